@@ -1,0 +1,35 @@
+#pragma once
+// PCL-tool-style command lines: positional files and single-dash options ("-alpha 0.7", "-h").
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace lidar_sgm {
+namespace apps {
+
+class Arguments {
+ public:
+  /// `valueOptions` take one value, `flagOptions` none. Throws std::invalid_argument for an
+  /// unknown option or an option without its value.
+  Arguments(int argc, const char* const* argv, const std::set<std::string>& valueOptions,
+            const std::set<std::string>& flagOptions);
+
+  const std::vector<std::string>& positionals() const { return positionals_; }
+  bool has(const std::string& name) const { return values_.count(name) > 0 || flags_.count(name) > 0; }
+
+  /// The option's value, or `fallback` when absent. A malformed number throws
+  /// std::invalid_argument naming the option and the text.
+  std::string text(const std::string& name, const std::string& fallback) const;
+  int integer(const std::string& name, int fallback) const;
+  double number(const std::string& name, double fallback) const;
+
+ private:
+  std::vector<std::string> positionals_;
+  std::map<std::string, std::string> values_;
+  std::set<std::string> flags_;
+};
+
+}  // namespace apps
+}  // namespace lidar_sgm

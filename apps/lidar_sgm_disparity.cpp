@@ -1,0 +1,207 @@
+// lidar_sgm_disparity: LiDAR-SGM on one frame, images in, KITTI disparity PNG out.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/arguments.hpp"
+#include "common/timer.hpp"
+#include "lidar_sgm/core/matcher.hpp"
+#include "lidar_sgm/io/image_io.hpp"
+
+namespace fs = std::filesystem;
+using lidar_sgm::apps::Arguments;
+using lidar_sgm::apps::Timer;
+
+namespace {
+
+const lidar_sgm::Parameters kDefaults;
+
+void printHelp(const char* program) {
+  std::printf(
+      "Syntax is: %s LEFT.png [RIGHT.png] OUT.png <options>\n"
+      "  LEFT OUT        LiDAR-only SGM (needs -lidar or -lidar_depth; LEFT gives the image size)\n"
+      "  LEFT RIGHT OUT  stereo-only SGM, or fused LiDAR-SGM with -lidar / -lidar_depth\n"
+      "  OUT.png is written in KITTI disparity format (uint16, disparity*256, 0 = invalid).\n"
+      "  Images: gray or color, 8 or 16 bit.\n"
+      "where options are:\n"
+      "  -lidar SPARSE.png        sparse LiDAR disparity, KITTI format (uint16, disparity*256, 0 = none)\n"
+      "  -lidar_depth DEPTH.png   sparse LiDAR depth, KITTI depth format (uint16, metres*256, 0 = none)\n"
+      "  -fb F                    focal length [px] * baseline [m] for -lidar_depth (d = F/z)\n"
+      "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
+      "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
+      "  -lidar_cost_cap C        upper bound of the LiDAR cost, in [1, 255] (default: %d)\n"
+      "  -num_disparities N       disparity search range, multiple of 16 (default: %d)\n"
+      "  -min_disparity M         smallest disparity (default: %d)\n"
+      "  -paths 4|8               SGM aggregation paths (default: %d)\n"
+      "  -p1 P1                   small-jump penalty (default: %d)\n"
+      "  -p2 P2                   large-jump penalty, > P1 (default: %d)\n"
+      "  -uniqueness U            uniqueness ratio [%%], 0 = off (default: %d)\n"
+      "  -no_lr_check             skip the left-right consistency check (default: check on)\n"
+      "  -lr_max_diff D           largest left-right difference [px] (default: %d)\n"
+      "  -median 0|3|5            median filter size, 0 = off (default: %d)\n"
+      "  -census 9x7|cs9x7        census window: full or centre-symmetric (default: 9x7)\n"
+      "  -all_pixels_fused        paper-literal Eq. 5 everywhere: (1-alpha)*C_S where no LiDAR point is\n"
+      "                           (default: full C_S there)\n"
+      "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto)\n"
+      "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
+      "  -h                       this help\n",
+      program, kDefaults.alpha, kDefaults.sigma, kDefaults.lidarCostCap, kDefaults.numDisparities,
+      kDefaults.minDisparity, kDefaults.paths, kDefaults.P1, kDefaults.P2, kDefaults.uniquenessRatio,
+      kDefaults.disp12MaxDiff, kDefaults.medianSize);
+}
+
+lidar_sgm::Parameters parametersFrom(const Arguments& args) {
+  lidar_sgm::Parameters p;
+  p.alpha = static_cast<float>(args.number("alpha", p.alpha));
+  p.sigma = static_cast<float>(args.number("sigma", p.sigma));
+  p.lidarCostCap = args.integer("lidar_cost_cap", p.lidarCostCap);
+  p.numDisparities = args.integer("num_disparities", p.numDisparities);
+  p.minDisparity = args.integer("min_disparity", p.minDisparity);
+  p.paths = args.integer("paths", p.paths);
+  p.P1 = args.integer("p1", p.P1);
+  p.P2 = args.integer("p2", p.P2);
+  p.uniquenessRatio = args.integer("uniqueness", p.uniquenessRatio);
+  p.lrCheck = !args.has("no_lr_check");
+  p.disp12MaxDiff = args.integer("lr_max_diff", p.disp12MaxDiff);
+  p.medianSize = args.integer("median", p.medianSize);
+  p.stereoCostWithoutLidar = !args.has("all_pixels_fused");
+  const std::string census = args.text("census", "9x7");
+  if (census == "9x7") {
+    p.censusType = lidar_sgm::CensusType::Census9x7;
+  } else if (census == "cs9x7") {
+    p.censusType = lidar_sgm::CensusType::CenterSymmetric9x7;
+  } else {
+    throw std::invalid_argument("option -census: '" + census + "' must be 9x7 or cs9x7");
+  }
+  lidar_sgm::validate(p);
+  return p;
+}
+
+bool samePath(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+void requirePngOutput(const std::string& path, const std::vector<std::string>& inputs) {
+  if (fs::path(path).extension() != ".png") {
+    throw std::invalid_argument("output '" + path + "' must be a .png file");
+  }
+  for (const std::string& input : inputs) {
+    if (samePath(path, input)) {
+      throw std::invalid_argument("output '" + path + "' is the input '" + input + "'; refusing to overwrite an input");
+    }
+  }
+}
+
+int run(int argc, char** argv) {
+  const Arguments args(argc, argv,
+                       {"lidar", "lidar_depth", "fb", "alpha", "sigma", "lidar_cost_cap", "num_disparities",
+                        "min_disparity", "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
+                        "backend", "color"},
+                       {"h", "help", "no_lr_check", "all_pixels_fused"});
+  if (args.has("h") || args.has("help")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  const std::vector<std::string>& files = args.positionals();
+  if (files.size() != 2 && files.size() != 3) {
+    printHelp(argv[0]);
+    throw std::invalid_argument("expected LEFT.png [RIGHT.png] OUT.png, got " + std::to_string(files.size()) +
+                                " file name(s)");
+  }
+  const bool stereo = files.size() == 3;
+  const std::string leftPath = files[0];
+  const std::string rightPath = stereo ? files[1] : "";
+  const std::string outPath = files.back();
+  const std::string lidarPath = args.text("lidar", "");
+  const std::string depthPath = args.text("lidar_depth", "");
+  const std::string colorPath = args.text("color", "");
+  if (!lidarPath.empty() && !depthPath.empty()) {
+    throw std::invalid_argument("give either -lidar or -lidar_depth, not both");
+  }
+  if (!depthPath.empty() && !args.has("fb")) {
+    throw std::invalid_argument("-lidar_depth needs -fb (focal length [px] * baseline [m])");
+  }
+  if (!stereo && lidarPath.empty() && depthPath.empty()) {
+    throw std::invalid_argument("LiDAR-only mode (LEFT OUT) needs -lidar or -lidar_depth");
+  }
+  std::vector<std::string> inputs{leftPath};
+  for (const std::string& p : {rightPath, lidarPath, depthPath}) {
+    if (!p.empty()) inputs.push_back(p);
+  }
+  requirePngOutput(outPath, inputs);
+  if (!colorPath.empty()) {
+    requirePngOutput(colorPath, inputs);
+    if (samePath(colorPath, outPath)) throw std::invalid_argument("-color must differ from OUT.png");
+  }
+  const lidar_sgm::Parameters params = parametersFrom(args);
+  const lidar_sgm::Backend backend = lidar_sgm::backendFromString(args.text("backend", "auto"));
+
+  Timer loadTimer;
+  std::printf("Loading %s", leftPath.c_str());
+  const cv::Mat left = lidar_sgm::io::readGrayImage(leftPath);
+  cv::Mat right;
+  if (stereo) {
+    std::printf(", %s", rightPath.c_str());
+    right = lidar_sgm::io::readGrayImage(rightPath);
+  }
+  lidar_sgm::Image<std::int16_t> sparse;
+  if (!lidarPath.empty()) {
+    std::printf(", %s", lidarPath.c_str());
+    sparse = lidar_sgm::io::readKittiDisparity(lidarPath);
+  } else if (!depthPath.empty()) {
+    std::printf(", %s", depthPath.c_str());
+    sparse = lidar_sgm::io::readKittiDepthAsDisparity(depthPath, args.number("fb", 0.0));
+  }
+  lidar_sgm::LidarPoints lidar;
+  if (!sparse.empty()) lidar = lidar_sgm::LidarPoints::fromDisparityImage(sparse.view());
+  std::printf(" [done, %.0f ms : %dx%d, %zu LiDAR points]\n", loadTimer.elapsedMs(), left.cols, left.rows,
+              lidar.size());
+  if (!sparse.empty() && lidar.empty()) {
+    throw std::invalid_argument("the LiDAR image '" + (lidarPath.empty() ? depthPath : lidarPath) +
+                                "' holds no valid point");
+  }
+
+  auto matcher = lidar_sgm::Matcher::create(backend, params);
+  lidar_sgm::Image<std::int16_t> disparity(left.cols, left.rows);
+  Timer sgmTimer;
+  matcher->compute(lidar_sgm::io::grayView(left),
+                   stereo ? lidar_sgm::io::grayView(right) : lidar_sgm::GrayImageView(),
+                   lidar.empty() ? nullptr : &lidar, disparity.view());
+  long valid = 0;
+  for (int y = 0; y < disparity.height(); ++y) {
+    for (int x = 0; x < disparity.width(); ++x) valid += disparity(x, y) != lidar_sgm::kInvalidDisparity;
+  }
+  std::printf("Matching (%s, %s, alpha %g) [done, %.0f ms : %.1f %% of pixels have a disparity]\n",
+              lidar_sgm::toString(matcher->lastMode()).c_str(), lidar_sgm::toString(matcher->backend()).c_str(),
+              matcher->lastMode() == lidar_sgm::MatchMode::Fused ? params.alpha
+              : matcher->lastMode() == lidar_sgm::MatchMode::LidarOnly ? 1.0 : 0.0,
+              sgmTimer.elapsedMs(), 100.0 * static_cast<double>(valid) / (static_cast<double>(disparity.width()) * disparity.height()));
+
+  Timer saveTimer;
+  std::printf("Saving %s", outPath.c_str());
+  lidar_sgm::io::writeImageAtomically(outPath, lidar_sgm::io::toKittiDisparity(disparity.view()));
+  if (!colorPath.empty()) {
+    std::printf(", %s", colorPath.c_str());
+    const double maxDisparity = params.minDisparity + params.numDisparities;
+    lidar_sgm::io::writeImageAtomically(colorPath, lidar_sgm::io::colorizeDisparity(disparity.view(), maxDisparity));
+  }
+  std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "\nError: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,10 @@
+# Shared settings for every lidar_sgm target: warnings (errors in CI), C++17.
+function(lidar_sgm_target_defaults target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
+    if(LIDAR_SGM_WARNINGS_AS_ERRORS)
+      target_compile_options(${target} PRIVATE -Werror)
+    endif()
+  endif()
+  target_compile_features(${target} PUBLIC cxx_std_17)
+endfunction()

@@ -1,0 +1,77 @@
+#pragma once
+/// @file image.hpp  Plain image views and owned images used across the core (no OpenCV, no PCL).
+
+#include <cstddef>
+#include <cstdint>
+#include <algorithm>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+namespace lidar_sgm {
+
+/// Non-owning view of a row-major 2D image. `stride` is counted in elements, not bytes
+/// (cv::Mat users pass `mat.step1()`), and may exceed `width` (padded rows).
+template <typename T>
+struct ImageView {
+  T* data = nullptr;
+  int width = 0;
+  int height = 0;
+  std::ptrdiff_t stride = 0;
+
+  ImageView() = default;
+  ImageView(T* data_, int width_, int height_, std::ptrdiff_t stride_)
+      : data(data_), width(width_), height(height_), stride(stride_) {}
+  ImageView(T* data_, int width_, int height_) : ImageView(data_, width_, height_, width_) {}
+
+  /// Views of mutable pixels convert to views of const pixels.
+  template <typename U = T, typename = std::enable_if_t<!std::is_const<U>::value>>
+  operator ImageView<const U>() const {  // NOLINT(google-explicit-constructor): mirrors T* -> const T*
+    return ImageView<const U>(data, width, height, stride);
+  }
+
+  bool empty() const { return data == nullptr || width <= 0 || height <= 0; }
+  T& operator()(int x, int y) const { return data[static_cast<std::ptrdiff_t>(y) * stride + x]; }
+  T* row(int y) const { return data + static_cast<std::ptrdiff_t>(y) * stride; }
+};
+
+/// Owned, densely packed image (stride == width).
+template <typename T>
+class Image {
+ public:
+  Image() = default;
+  Image(int width, int height, T fill = T{})
+      : width_(width), height_(height), pixels_(static_cast<std::size_t>(width) * height, fill) {}
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool empty() const { return pixels_.empty(); }
+  T* data() { return pixels_.data(); }
+  const T* data() const { return pixels_.data(); }
+  T& operator()(int x, int y) { return pixels_[static_cast<std::size_t>(y) * width_ + x]; }
+  const T& operator()(int x, int y) const { return pixels_[static_cast<std::size_t>(y) * width_ + x]; }
+
+  ImageView<T> view() { return ImageView<T>(pixels_.data(), width_, height_, width_); }
+  ImageView<const T> view() const { return ImageView<const T>(pixels_.data(), width_, height_, width_); }
+
+  /// Reallocates only when the size changes (buffers are reused between frames).
+  void resize(int width, int height) {
+    width_ = width;
+    height_ = height;
+    pixels_.resize(static_cast<std::size_t>(width) * height);
+  }
+  void fill(T value) { std::fill(pixels_.begin(), pixels_.end(), value); }
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<T> pixels_;
+};
+
+/// In-memory disparities are int16 fixed point with 4 fractional bits (x16), as in OpenCV/libSGM.
+constexpr int kDisparityFractionBits = 4;
+constexpr int kDisparityScale = 1 << kDisparityFractionBits;
+/// Marks a pixel without an estimate (also "no LiDAR point" in sparse disparity images).
+constexpr std::int16_t kInvalidDisparity = std::numeric_limits<std::int16_t>::min();
+
+}  // namespace lidar_sgm

@@ -1,0 +1,116 @@
+#pragma once
+/// @file matcher.hpp  The one entry point of the core: LiDAR-SGM on a frame, any backend.
+
+#include <memory>
+#include <string>
+
+#include "lidar_sgm/core/image.hpp"
+#include "lidar_sgm/core/lidar_points.hpp"
+#include "lidar_sgm/core/parameters.hpp"
+
+namespace lidar_sgm {
+
+enum class Backend {
+  Auto,    ///< the fastest backend built into this library
+  CpuRef,  ///< naive reference loops: the specification
+  Cpu,     ///< SIMD + threads (not built yet)
+  Cuda,    ///< GPU (not built yet)
+};
+
+std::string toString(Backend backend);
+/// "auto", "cpu_ref", "cpu", "cuda"; throws std::invalid_argument naming the accepted values.
+Backend backendFromString(const std::string& name);
+/// Whether this build of the library contains `backend` (Auto always is).
+bool isAvailable(Backend backend);
+
+/// Which costs a frame was matched with; decided by the inputs given to compute().
+enum class MatchMode {
+  StereoOnly,  ///< left + right, no LiDAR: C = C_S (alpha is not used)
+  LidarOnly,   ///< LiDAR, no right image: C = C_L (alpha = 1)
+  Fused,       ///< left + right + LiDAR: C = alpha*C_L + (1-alpha)*C_S (Eq. 5)
+};
+std::string toString(MatchMode mode);
+
+/// Wall-clock time of each stage of the last compute() call, in milliseconds.
+struct StageTimings {
+  double census = 0;
+  double censusCost = 0;
+  double lidarCost = 0;
+  double fuseCosts = 0;
+  double aggregatePaths = 0;
+  double selectDisparity = 0;
+  double leftRightCheck = 0;
+  double medianFilter = 0;
+  double total() const {
+    return census + censusCost + lidarCost + fuseCosts + aggregatePaths + selectDisparity +
+           leftRightCheck + medianFilter;
+  }
+};
+
+/// A gray image of 8 or 16 bits per pixel (census only compares intensities).
+struct GrayImageView {
+  ImageView<const std::uint8_t> gray8;
+  ImageView<const std::uint16_t> gray16;
+  GrayImageView() = default;
+  GrayImageView(ImageView<const std::uint8_t> image) : gray8(image) {}    // NOLINT: view conversion
+  GrayImageView(ImageView<const std::uint16_t> image) : gray16(image) {}  // NOLINT: view conversion
+  bool empty() const { return gray8.empty() && gray16.empty(); }
+  int width() const { return gray8.empty() ? gray16.width : gray8.width; }
+  int height() const { return gray8.empty() ? gray16.height : gray8.height; }
+};
+
+/// Computes a dense disparity image for the left rectified camera.
+///
+/// @code
+///   lidar_sgm::Parameters params;             // paper defaults: 128 disparities, P1 10, P2 100, alpha 0.7
+///   auto matcher = lidar_sgm::Matcher::create(lidar_sgm::Backend::Auto, params);
+///   lidar_sgm::Image<int16_t> disparity(width, height);
+///   matcher->compute(left, right, &lidar, disparity.view());  // x16 fixed point, kInvalidDisparity
+/// @endcode
+///
+/// A matcher keeps its buffers between frames of the same size. Not thread-safe: use one
+/// matcher per thread.
+class Matcher {
+ public:
+  /// Throws std::invalid_argument for invalid parameters (the message names the parameter and
+  /// its allowed range) and std::runtime_error for a backend that is not built in.
+  static std::unique_ptr<Matcher> create(Backend backend, const Parameters& params = {});
+
+  virtual ~Matcher() = default;
+  Matcher(const Matcher&) = delete;
+  Matcher& operator=(const Matcher&) = delete;
+
+  virtual Backend backend() const = 0;
+  const Parameters& parameters() const { return params_; }
+  /// Validates first; the matcher is unchanged when `params` is rejected.
+  void setParameters(const Parameters& params);
+
+  /// The mode follows from the inputs: no `lidar` (nullptr or empty) -> stereo-only; empty
+  /// `right` -> LiDAR-only (then `left` may be empty too, the size comes from `lidar`); all
+  /// three -> fused. `disparity` must have the frame's size; it receives x16 disparities or
+  /// kInvalidDisparity. Throws std::invalid_argument naming the problem for empty or
+  /// mismatched inputs.
+  void compute(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
+               ImageView<std::int16_t> disparity);
+
+  MatchMode lastMode() const { return lastMode_; }
+  const StageTimings& lastTimings() const { return timings_; }
+  /// 1 where a LiDAR point touched the pixel's 3x3 neighbourhood in the last frame.
+  ImageView<const std::uint8_t> lidarSupport() const { return support_.view(); }
+
+ protected:
+  explicit Matcher(const Parameters& params);
+
+  /// Runs every stage on validated inputs (sizes agree, mode decided).
+  virtual void run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
+                   MatchMode mode, ImageView<std::int16_t> disparity) = 0;
+
+  Parameters params_;
+  StageTimings timings_;
+  Image<std::uint8_t> support_;
+
+ private:
+  MatchMode lastMode_ = MatchMode::StereoOnly;
+};
+
+}  // namespace lidar_sgm

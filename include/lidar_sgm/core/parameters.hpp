@@ -1,0 +1,57 @@
+#pragma once
+/// @file parameters.hpp  The matcher's parameters, with the paper's defaults, and their validation.
+
+#include <string>
+
+namespace lidar_sgm {
+
+/// Census window variants (the paper's stereo cost C_S).
+enum class CensusType {
+  Census9x7,               ///< 62 bits: every pixel of the 9x7 window against the centre.
+  CenterSymmetric9x7,      ///< 31 bits: pixel pairs mirrored about the centre (half the work).
+};
+
+/// Parameter names follow OpenCV's StereoSGBM where they mean the same thing.
+/// Every value is checked by validate(); nothing is silently coerced.
+struct Parameters {
+  int minDisparity = 0;       ///< smallest disparity searched [px], in [-512, 512]
+  int numDisparities = 128;   ///< search range [px], a multiple of 16 in [16, 512]
+  int P1 = 10;                ///< penalty for a disparity change of 1 px between neighbours (Eq. 1)
+  int P2 = 100;               ///< penalty for larger jumps (Eq. 1), P1 < P2 <= 4000
+  int paths = 4;              ///< SGM paths: 4 (horizontal + vertical, as the paper) or 8 (+ diagonals)
+  float alpha = 0.7f;         ///< LiDAR weight in C = alpha*C_L + (1-alpha)*C_S (Eq. 5), in [0, 1]
+  float sigma = 2.0f;         ///< std-dev of a LiDAR disparity [px] (Eq. 4), in [0.1, 100]
+  /// Upper bound of C_L (Eq. 4). Default 62 = the largest census cost, so that alpha weighs two
+  /// costs of the same range and a wrong LiDAR point (seen by the LiDAR, hidden from the camera)
+  /// can never outweigh a complete census mismatch. In [1, 255].
+  int lidarCostCap = 62;
+  /// Pixels that no LiDAR point touches (no point in their 3x3 neighbourhood) have no LiDAR
+  /// information. true: they keep the full stereo cost (C = C_S), so the fusion does not weaken
+  /// stereo where the LiDAR is blind (e.g. above the scan); false: the paper's literal
+  /// C = (1-alpha)*C_S with C_L = 0 there.
+  /// Measured on KITTI 2015 (protocol P1, 2 frames): false gives 96.1/94.8 % correct, true
+  /// 92.0/92.2 %, so the paper's form is the default.
+  bool stereoCostWithoutLidar = false;
+  int uniquenessRatio = 0;    ///< margin [%] by which the best cost must beat the others (0 = off), in [0, 99]
+  bool lrCheck = true;        ///< left-right consistency check (stereo and fused modes)
+  int disp12MaxDiff = 1;      ///< largest accepted left-right difference [px], in [0, numDisparities]
+  /// Fused mode: the left-right check spares pixels with a LiDAR point within +-1 column and
+  /// +-lidarCoverageRows rows (measured, between beams) — the LiDAR vouches for them, and the
+  /// check would only cost density there. 6 rows bridge an HDL-64E's beam gaps in KITTI
+  /// images. In [1, 64].
+  int lidarCoverageRows = 6;
+  int medianSize = 5;         ///< median filter window: 0 (off), 3 or 5 (the paper uses 5)
+  bool subpixel = true;       ///< parabola fit through the best cost and its two neighbours
+  CensusType censusType = CensusType::Census9x7;
+};
+
+/// An empty string when `params` is valid; otherwise a message that names the first offending
+/// parameter, its value and its allowed range.
+std::string validationError(const Parameters& params);
+
+/// Throws std::invalid_argument with validationError() when `params` is invalid.
+void validate(const Parameters& params);
+
+std::string toString(CensusType type);
+
+}  // namespace lidar_sgm

@@ -1,0 +1,30 @@
+#pragma once
+/// @file metrics.hpp  The paper's and KITTI's disparity metrics (see docs in EVALUATION.md).
+
+#include <cstdint>
+
+#include "lidar_sgm/core/image.hpp"
+
+namespace lidar_sgm {
+namespace eval {
+
+/// Scores over the ground-truth pixels that were not given as input.
+struct DisparityMetrics {
+  long gtPixels = 0;        ///< GT pixels scored
+  long estimatedPixels = 0; ///< of those, pixels with an estimate
+  double correct = 0;       ///< share with error < 3 px or < 5 % of GT (missing = not correct)
+  double rmse = 0;          ///< RMS error over the correct pixels [px]
+  double d1 = 0;            ///< share with error > 3 px and > 5 % (missing = error)
+  double d1Est = 0;         ///< D1 over the pixels that have an estimate
+  double density = 0;       ///< share of GT pixels with an estimate
+};
+
+/// `estimate`: x16 disparities (kInvalidDisparity = none). `groundTruth`: disparity [px],
+/// <= 0 or NaN = no GT. `exclude` (optional, same size): non-zero pixels are not scored
+/// (e.g. the pixels whose LiDAR value was given as input).
+DisparityMetrics evaluateDisparity(ImageView<const std::int16_t> estimate,
+                                   ImageView<const float> groundTruth,
+                                   ImageView<const std::uint8_t> exclude = {});
+
+}  // namespace eval
+}  // namespace lidar_sgm

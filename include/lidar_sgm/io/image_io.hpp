@@ -1,0 +1,48 @@
+#pragma once
+/// @file image_io.hpp  Reading and writing images and disparity files (OpenCV imgcodecs).
+
+#include <cstdint>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "lidar_sgm/core/image.hpp"
+#include "lidar_sgm/core/matcher.hpp"
+
+namespace lidar_sgm {
+namespace io {
+
+/// Reads an image as gray, keeping 8 or 16 bits (color is converted, BGR order).
+/// Throws std::runtime_error naming the file when it is missing or not an image.
+cv::Mat readGrayImage(const std::string& path);
+
+/// Reads a color image (8-bit BGR; gray is expanded) for coloring clouds and pictures.
+cv::Mat readColorImage(const std::string& path);
+
+/// A core view of an 8- or 16-bit single-channel cv::Mat (no copy).
+GrayImageView grayView(const cv::Mat& gray);
+
+/// KITTI disparity PNG (uint16, disparity*256, 0 = none) -> x16 disparities (kInvalidDisparity).
+Image<std::int16_t> readKittiDisparity(const std::string& path);
+
+/// KITTI disparity PNG -> float disparities [px], 0 where there is none (full 1/256 precision,
+/// for ground truth).
+Image<float> readKittiDisparityFloat(const std::string& path);
+
+/// KITTI depth-completion PNG (uint16, metres*256, 0 = none) -> x16 disparities with d = F/z
+/// (Eq. 3), F = focal length [px] * baseline [m].
+Image<std::int16_t> readKittiDepthAsDisparity(const std::string& path, double focalBaseline);
+
+/// x16 disparities -> KITTI disparity PNG (uint16, disparity*256). Invalid and non-positive
+/// disparities are written as 0, which the format reserves for "no value".
+cv::Mat toKittiDisparity(ImageView<const std::int16_t> disparity16);
+
+/// Color picture of x16 disparities (turbo color map, 0 .. maxDisparity), invalid pixels black.
+cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxDisparity);
+
+/// Writes through a temporary file in the same directory, renamed over `path` only once the
+/// image is complete, so a crash never leaves a partial file. Throws std::runtime_error.
+void writeImageAtomically(const std::string& path, const cv::Mat& image);
+
+}  // namespace io
+}  // namespace lidar_sgm

@@ -1,0 +1,99 @@
+#include "backends/cpu_ref/cpu_ref_matcher.hpp"
+
+#include <chrono>
+
+#include "lidar_sgm/core/stages.hpp"
+
+namespace lidar_sgm {
+namespace {
+
+class StageClock {
+ public:
+  double lapMs() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+    return ms;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+void census(const GrayImageView& image, CensusType type, Image<std::uint64_t>& out) {
+  out.resize(image.width(), image.height());
+  if (!image.gray8.empty()) {
+    cpu_ref::censusTransform(image.gray8, type, out.view());
+  } else {
+    cpu_ref::censusTransform(image.gray16, type, out.view());
+  }
+}
+
+}  // namespace
+
+void CpuRefMatcher::run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
+                        MatchMode mode, ImageView<std::int16_t> disparity) {
+  const Parameters& p = params_;
+  const int width = disparity.width;
+  const int height = disparity.height;
+  const int D = p.numDisparities;
+  StageClock clock;
+
+  support_.resize(width, height);
+  support_.fill(0);
+  if (mode != MatchMode::LidarOnly) {
+    census(left, p.censusType, leftCensus_);
+    census(right, p.censusType, rightCensus_);
+    timings_.census = clock.lapMs();
+    stereoCost_.resize(width, height, D);
+    cpu_ref::censusCost(leftCensus_.view(), rightCensus_.view(), p.censusType, p.minDisparity, stereoCost_);
+    timings_.censusCost = clock.lapMs();
+  }
+  if (mode != MatchMode::StereoOnly) {
+    if (tableSigma_ != p.sigma || tableCap_ != p.lidarCostCap) {
+      table_ = LidarCostTable(p.sigma, p.lidarCostCap);
+      tableSigma_ = p.sigma;
+      tableCap_ = p.lidarCostCap;
+    }
+    lidarCost_.resize(width, height, D);
+    cpu_ref::lidarCost(*lidar, table_, p.minDisparity, lidarCost_, support_.view());
+    timings_.lidarCost = clock.lapMs();
+  }
+  const MatchingCostVolume* cost = mode == MatchMode::StereoOnly ? &stereoCost_ : &lidarCost_;
+  if (mode == MatchMode::Fused) {
+    fusedCost_.resize(width, height, D);
+    cpu_ref::fuseCosts(lidarCost_, stereoCost_, support_.view(), alphaWeight(p.alpha),
+                       p.stereoCostWithoutLidar, fusedCost_);
+    cost = &fusedCost_;
+    timings_.fuseCosts = clock.lapMs();
+  }
+
+  sum_.resize(width, height, D);
+  cpu_ref::aggregatePaths(*cost, p.P1, p.P2, p.paths, sum_);
+  timings_.aggregatePaths = clock.lapMs();
+
+  rawDisparity_.resize(width, height);
+  bestIndex_.resize(width, height);
+  const SelectedDisparity selected{rawDisparity_.view(), bestIndex_.view()};
+  cpu_ref::selectDisparity(sum_, p.minDisparity, p.uniquenessRatio, p.subpixel, selected);
+  timings_.selectDisparity = clock.lapMs();
+
+  if (p.lrCheck && mode != MatchMode::LidarOnly) {
+    rightIndex_.resize(width, height);
+    cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());
+    ImageView<const std::uint8_t> support;
+    if (mode == MatchMode::Fused) {
+      coverage_.resize(width, height);
+      cpu_ref::lidarCoverage(*lidar, p.lidarCoverageRows, coverage_.view());
+      support = coverage_.view();
+    }
+    cpu_ref::leftRightCheck(selected, rightIndex_.view(), support, p.minDisparity, p.disp12MaxDiff,
+                            /*keepNoCounterpart=*/mode == MatchMode::Fused);
+    timings_.leftRightCheck = clock.lapMs();
+  }
+
+  cpu_ref::medianFilter(rawDisparity_.view(), p.medianSize, disparity);
+  timings_.medianFilter = clock.lapMs();
+}
+
+}  // namespace lidar_sgm

@@ -1,0 +1,59 @@
+// LiDAR matching cost C_L (Eq. 4), reference backend.
+#include <algorithm>
+
+#include "lidar_sgm/core/stages.hpp"
+
+namespace lidar_sgm {
+namespace cpu_ref {
+
+void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDisparity,
+               MatchingCostVolume& cost, ImageView<std::uint8_t> support) {
+  const int width = points.width();
+  const int height = points.height();
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      bool touched = false;
+      for (int d = 0; d < cost.numDisparities(); ++d) {
+        const int disparity16 = (minDisparity + d) * kDisparityScale;
+        int best = table.cap();
+        // The points of the pixel itself and of its 8 neighbours are associated with it (Sec. III-B).
+        for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
+          for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+            for (const int* dP = points.begin(nx, ny); dP != points.end(nx, ny); ++dP) {
+              best = std::min(best, static_cast<int>(table(disparity16 - *dP)));
+              touched = true;
+            }
+          }
+        }
+        // No associated point: no information, the same (zero) cost for every disparity.
+        cost(x, y, d) = static_cast<std::uint8_t>(touched ? best : 0);
+      }
+      if (!support.empty()) support(x, y) = touched ? 1 : 0;
+    }
+  }
+}
+
+}  // namespace cpu_ref
+}  // namespace lidar_sgm
+
+namespace lidar_sgm {
+namespace cpu_ref {
+
+void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> coverage) {
+  const int width = points.width();
+  const int height = points.height();
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      bool covered = false;
+      for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
+        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+          if (points.count(nx, ny) > 0) covered = true;
+        }
+      }
+      coverage(x, y) = covered ? 1 : 0;
+    }
+  }
+}
+
+}  // namespace cpu_ref
+}  // namespace lidar_sgm

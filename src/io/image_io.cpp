@@ -1,0 +1,165 @@
+#include "lidar_sgm/io/image_io.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <unistd.h>
+
+namespace lidar_sgm {
+namespace io {
+namespace fs = std::filesystem;
+namespace {
+
+cv::Mat readAny(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw std::runtime_error("cannot read image '" + path + "': no such file");
+  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': not a readable image file");
+  return image;
+}
+
+cv::Mat readSixteenBitGray(const std::string& path, const char* what) {
+  cv::Mat image = readAny(path);
+  if (image.type() != CV_16UC1) {
+    throw std::runtime_error("'" + path + "' is not a " + what +
+                             " PNG: expected a 16-bit single-channel image");
+  }
+  return image;
+}
+
+}  // namespace
+
+cv::Mat readGrayImage(const std::string& path) {
+  cv::Mat image = readAny(path);
+  if (image.depth() != CV_8U && image.depth() != CV_16U) {
+    throw std::runtime_error("cannot use image '" + path + "': only 8- and 16-bit images are supported");
+  }
+  if (image.channels() == 1) return image;
+  cv::Mat gray;
+  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+cv::Mat readColorImage(const std::string& path) {
+  cv::Mat image = readAny(path);
+  if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 257.0);
+  if (image.channels() == 1) cv::cvtColor(image, image, cv::COLOR_GRAY2BGR);
+  if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
+  return image;
+}
+
+GrayImageView grayView(const cv::Mat& gray) {
+  if (gray.type() == CV_8UC1) {
+    return ImageView<const std::uint8_t>(gray.ptr<std::uint8_t>(), gray.cols, gray.rows,
+                                         static_cast<std::ptrdiff_t>(gray.step1()));
+  }
+  if (gray.type() == CV_16UC1) {
+    return ImageView<const std::uint16_t>(gray.ptr<std::uint16_t>(), gray.cols, gray.rows,
+                                          static_cast<std::ptrdiff_t>(gray.step1()));
+  }
+  throw std::invalid_argument("grayView: expected an 8- or 16-bit single-channel image");
+}
+
+Image<std::int16_t> readKittiDisparity(const std::string& path) {
+  const cv::Mat png = readSixteenBitGray(path, "KITTI disparity");
+  Image<std::int16_t> disparity(png.cols, png.rows, kInvalidDisparity);
+  for (int y = 0; y < png.rows; ++y) {
+    for (int x = 0; x < png.cols; ++x) {
+      const int v = png.at<std::uint16_t>(y, x);
+      // value/256 px -> x16: divide by 16, rounded; 0 means "no value" in the format.
+      if (v != 0) disparity(x, y) = static_cast<std::int16_t>((v + 8) / 16);
+    }
+  }
+  return disparity;
+}
+
+Image<float> readKittiDisparityFloat(const std::string& path) {
+  const cv::Mat png = readSixteenBitGray(path, "KITTI disparity");
+  Image<float> disparity(png.cols, png.rows, 0.0f);
+  for (int y = 0; y < png.rows; ++y) {
+    for (int x = 0; x < png.cols; ++x) disparity(x, y) = png.at<std::uint16_t>(y, x) / 256.0f;
+  }
+  return disparity;
+}
+
+Image<std::int16_t> readKittiDepthAsDisparity(const std::string& path, double focalBaseline) {
+  if (!(focalBaseline > 0.0) || !std::isfinite(focalBaseline)) {
+    throw std::invalid_argument("focal length * baseline must be a positive number of px*m, got " +
+                                std::to_string(focalBaseline));
+  }
+  const cv::Mat png = readSixteenBitGray(path, "KITTI depth");
+  Image<std::int16_t> disparity(png.cols, png.rows, kInvalidDisparity);
+  for (int y = 0; y < png.rows; ++y) {
+    for (int x = 0; x < png.cols; ++x) {
+      const int v = png.at<std::uint16_t>(y, x);
+      if (v == 0) continue;
+      const double depth = v / 256.0;
+      const long d16 = std::lround(focalBaseline / depth * kDisparityScale);  // Eq. 3
+      if (d16 > 0 && d16 <= 32767) disparity(x, y) = static_cast<std::int16_t>(d16);
+    }
+  }
+  return disparity;
+}
+
+cv::Mat toKittiDisparity(ImageView<const std::int16_t> disparity16) {
+  cv::Mat png(disparity16.height, disparity16.width, CV_16UC1);
+  for (int y = 0; y < disparity16.height; ++y) {
+    for (int x = 0; x < disparity16.width; ++x) {
+      const int d = disparity16(x, y);
+      png.at<std::uint16_t>(y, x) =
+          static_cast<std::uint16_t>(d == kInvalidDisparity || d <= 0 ? 0 : d * (256 / kDisparityScale));
+    }
+  }
+  return png;
+}
+
+cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxDisparity) {
+  cv::Mat scaled(disparity16.height, disparity16.width, CV_8UC1);
+  cv::Mat invalid(disparity16.height, disparity16.width, CV_8UC1, cv::Scalar(0));
+  const double scale = 255.0 / (std::max(maxDisparity, 1.0) * kDisparityScale);
+  for (int y = 0; y < disparity16.height; ++y) {
+    for (int x = 0; x < disparity16.width; ++x) {
+      const int d = disparity16(x, y);
+      if (d == kInvalidDisparity) invalid.at<std::uint8_t>(y, x) = 255;
+      scaled.at<std::uint8_t>(y, x) = cv::saturate_cast<std::uint8_t>(d == kInvalidDisparity ? 0 : d * scale);
+    }
+  }
+  cv::Mat color;
+  cv::applyColorMap(scaled, color, cv::COLORMAP_TURBO);
+  color.setTo(cv::Scalar(0, 0, 0), invalid);
+  return color;
+}
+
+void writeImageAtomically(const std::string& path, const cv::Mat& image) {
+  const fs::path target(path);
+  // Same directory (so rename is atomic) and same extension (imwrite picks the format by it).
+  fs::path temporary = target;
+  temporary.replace_filename("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
+                             target.extension().string());
+  bool written = false;
+  try {
+    written = cv::imwrite(temporary.string(), image);
+  } catch (const cv::Exception& e) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw std::runtime_error("cannot write '" + path + "': " + e.what());
+  }
+  std::error_code ec;
+  if (!written) {
+    fs::remove(temporary, ec);
+    throw std::runtime_error("cannot write '" + path + "': the directory is not writable or the extension is unknown");
+  }
+  fs::rename(temporary, target, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
+  }
+}
+
+}  // namespace io
+}  // namespace lidar_sgm
