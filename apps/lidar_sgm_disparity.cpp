@@ -43,14 +43,14 @@ void printHelp(const char* program) {
       "  -lr_max_diff D           largest left-right difference [px] (default: %d)\n"
       "  -median 0|3|5            median filter size, 0 = off (default: %d)\n"
       "  -census 9x7|cs9x7        census window: full or centre-symmetric (default: 9x7)\n"
-      "  -all_pixels_fused        paper-literal Eq. 5 everywhere: (1-alpha)*C_S where no LiDAR point is\n"
-      "                           (default: full C_S there)\n"
+      "  -stereo_cost_without_lidar  full C_S where no LiDAR point is (default: the paper's (1-alpha)*C_S)\n"
+      "  -lidar_coverage_rows R   LR check spares pixels with a LiDAR point within +-R rows (default: %d)\n"
       "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto)\n"
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -h                       this help\n",
       program, kDefaults.alpha, kDefaults.sigma, kDefaults.lidarCostCap, kDefaults.numDisparities,
       kDefaults.minDisparity, kDefaults.paths, kDefaults.P1, kDefaults.P2, kDefaults.uniquenessRatio,
-      kDefaults.disp12MaxDiff, kDefaults.medianSize);
+      kDefaults.disp12MaxDiff, kDefaults.medianSize, kDefaults.lidarCoverageRows);
 }
 
 lidar_sgm::Parameters parametersFrom(const Arguments& args) {
@@ -67,7 +67,8 @@ lidar_sgm::Parameters parametersFrom(const Arguments& args) {
   p.lrCheck = !args.has("no_lr_check");
   p.disp12MaxDiff = args.integer("lr_max_diff", p.disp12MaxDiff);
   p.medianSize = args.integer("median", p.medianSize);
-  p.stereoCostWithoutLidar = !args.has("all_pixels_fused");
+  p.stereoCostWithoutLidar = args.has("stereo_cost_without_lidar");
+  p.lidarCoverageRows = args.integer("lidar_coverage_rows", p.lidarCoverageRows);
   const std::string census = args.text("census", "9x7");
   if (census == "9x7") {
     p.censusType = lidar_sgm::CensusType::Census9x7;
@@ -101,8 +102,8 @@ int run(int argc, char** argv) {
   const Arguments args(argc, argv,
                        {"lidar", "lidar_depth", "fb", "alpha", "sigma", "lidar_cost_cap", "num_disparities",
                         "min_disparity", "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
-                        "backend", "color"},
-                       {"h", "help", "no_lr_check", "all_pixels_fused"});
+                        "backend", "color", "lidar_coverage_rows"},
+                       {"h", "help", "no_lr_check", "stereo_cost_without_lidar"});
   if (args.has("h") || args.has("help")) {
     printHelp(argv[0]);
     return 0;

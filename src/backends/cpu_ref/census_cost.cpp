@@ -1,4 +1,6 @@
-// Stereo matching cost C_S, reference backend: Hamming distance bit by bit.
+// Stereo matching cost C_S, reference backend: Hamming distance of census strings.
+#include <bitset>
+
 #include "lidar_sgm/core/stages.hpp"
 
 namespace lidar_sgm {
@@ -6,9 +8,7 @@ namespace cpu_ref {
 namespace {
 
 int hammingDistance(std::uint64_t a, std::uint64_t b) {
-  int distance = 0;
-  for (std::uint64_t diff = a ^ b; diff != 0; diff >>= 1) distance += static_cast<int>(diff & 1u);
-  return distance;
+  return static_cast<int>(std::bitset<64>(a ^ b).count());  // number of differing bits
 }
 
 }  // namespace

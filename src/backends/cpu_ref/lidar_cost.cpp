@@ -1,5 +1,6 @@
 // LiDAR matching cost C_L (Eq. 4), reference backend.
 #include <algorithm>
+#include <vector>
 
 #include "lidar_sgm/core/stages.hpp"
 
@@ -10,25 +11,24 @@ void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDi
                MatchingCostVolume& cost, ImageView<std::uint8_t> support) {
   const int width = points.width();
   const int height = points.height();
+  std::vector<int> associated;
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      bool touched = false;
+      // The points of the pixel itself and of its 8 neighbours are associated with it (Sec. III-B).
+      associated.clear();
+      for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
+        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+          associated.insert(associated.end(), points.begin(nx, ny), points.end(nx, ny));
+        }
+      }
       for (int d = 0; d < cost.numDisparities(); ++d) {
         const int disparity16 = (minDisparity + d) * kDisparityScale;
         int best = table.cap();
-        // The points of the pixel itself and of its 8 neighbours are associated with it (Sec. III-B).
-        for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
-          for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
-            for (const int* dP = points.begin(nx, ny); dP != points.end(nx, ny); ++dP) {
-              best = std::min(best, static_cast<int>(table(disparity16 - *dP)));
-              touched = true;
-            }
-          }
-        }
+        for (const int dP : associated) best = std::min(best, static_cast<int>(table(disparity16 - dP)));
         // No associated point: no information, the same (zero) cost for every disparity.
-        cost(x, y, d) = static_cast<std::uint8_t>(touched ? best : 0);
+        cost(x, y, d) = static_cast<std::uint8_t>(associated.empty() ? 0 : best);
       }
-      if (!support.empty()) support(x, y) = touched ? 1 : 0;
+      if (!support.empty()) support(x, y) = associated.empty() ? 0 : 1;
     }
   }
 }

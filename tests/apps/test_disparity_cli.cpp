@@ -1,0 +1,128 @@
+// The lidar_sgm_disparity tool as a user runs it: exit codes, messages, files left behind.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/synthetic_stereo.hpp"
+#include "lidar_sgm/io/image_io.hpp"
+
+namespace lidar_sgm {
+namespace {
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode;
+  std::string output;  // stdout + stderr
+};
+
+RunResult runTool(const std::string& arguments) {
+  const std::string command = std::string(LIDAR_SGM_DISPARITY_TOOL) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+class DisparityCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("lidar_sgm_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    const test::SyntheticStereo s = test::makeStereo(97, 61, [](double x, double) { return 6.0 + 0.05 * x; });
+    write("left.png", cv::Mat(61, 97, CV_8UC1, const_cast<std::uint8_t*>(s.left.data())).clone());
+    write("right.png", cv::Mat(61, 97, CV_8UC1, const_cast<std::uint8_t*>(s.right.data())).clone());
+    cv::Mat sparse(61, 97, CV_16UC1, cv::Scalar(0));
+    for (int y = 0; y < 61; y += 4) {
+      for (int x = 0; x < 97; x += 3) sparse.at<std::uint16_t>(y, x) = static_cast<std::uint16_t>(s.disparity(x, y) * 256);
+    }
+    write("sparse.png", sparse);
+    write("small.png", cv::Mat(60, 97, CV_8UC1, cv::Scalar(3)));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  void write(const std::string& name, const cv::Mat& image) { ASSERT_TRUE(cv::imwrite(p(name), image)); }
+  std::string p(const std::string& name) const { return (dir_ / name).string(); }
+  std::size_t fileCount() const {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+  }
+  // A failing call must exit non-zero, say `message`, and leave no new file behind.
+  void expectFailure(const std::string& arguments, const std::string& message) {
+    const std::size_t before = fileCount();
+    const RunResult r = runTool(arguments);
+    EXPECT_NE(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << "expected '" << message << "' in:\n" << r.output;
+    EXPECT_EQ(fileCount(), before) << "a failed run left a file behind";
+    EXPECT_FALSE(fs::exists(p("out.png")));
+  }
+  fs::path dir_;
+};
+
+TEST_F(DisparityCli, HelpListsEveryOptionWithItsDefault) {
+  const RunResult r = runTool("-h");
+  EXPECT_EQ(r.exitCode, 0);
+  for (const char* option : {"-lidar ", "-lidar_depth", "-fb", "-alpha", "-sigma", "-num_disparities",
+                             "-min_disparity", "-paths", "-p1", "-p2", "-uniqueness", "-no_lr_check", "-median",
+                             "-backend", "-color", "(default: 0.7)", "(default: 128)", "(default: 100)"}) {
+    EXPECT_NE(r.output.find(option), std::string::npos) << option;
+  }
+}
+
+TEST_F(DisparityCli, FusedRunWritesKittiDisparityAndPicture) {
+  const RunResult r = runTool(p("left.png") + " " + p("right.png") + " " + p("out.png") + " -lidar " + p("sparse.png") +
+                              " -num_disparities 32 -color " + p("color.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("fused"), std::string::npos) << r.output;
+  const cv::Mat out = cv::imread(p("out.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(out.type(), CV_16UC1);
+  EXPECT_EQ(out.cols, 97);
+  // Disparity 6 + 0.05*50 = 8.5 px at x = 50, stored as value/256.
+  EXPECT_NEAR(out.at<std::uint16_t>(30, 50) / 256.0, 8.5, 0.5);
+  EXPECT_EQ(cv::imread(p("color.png")).channels(), 3);
+  EXPECT_EQ(fileCount(), 6u) << "temporary files left behind";
+}
+
+TEST_F(DisparityCli, TwoFilesMeanLidarOnly) {
+  const RunResult r = runTool(p("left.png") + " " + p("out.png") + " -lidar " + p("sparse.png") + " -num_disparities 32");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("lidar-only"), std::string::npos) << r.output;
+}
+
+TEST_F(DisparityCli, FailsLoudlyAndLeavesNoOutput) {
+  const std::string lr = p("left.png") + " " + p("right.png") + " ";
+  expectFailure(lr + p("out.png") + " -p1 100 -p2 50", "P2 = 50");
+  expectFailure(lr + p("out.png") + " -num_disparities 100", "multiple of 16");
+  expectFailure(lr + p("out.png") + " -alpha 2", "alpha = 2");
+  expectFailure(lr + p("out.png") + " -alpha abc", "'abc' is not a finite number");
+  expectFailure(lr + p("out.png") + " -paths", "needs a value");
+  expectFailure(lr + p("out.png") + " -bogus 1", "unknown option -bogus");
+  expectFailure(p("missing.png") + " " + p("right.png") + " " + p("out.png"), "missing.png': no such file");
+  expectFailure(p("left.png") + " " + p("small.png") + " " + p("out.png"), "differ in size");
+  expectFailure(p("left.png") + " " + p("out.png"), "needs -lidar or -lidar_depth");
+  expectFailure(lr + p("out.png") + " -lidar " + p("left.png"), "16-bit single-channel");
+  expectFailure(lr + p("out.png") + " -lidar_depth " + p("sparse.png"), "needs -fb");
+  expectFailure(lr + p("out.png") + " -backend gpu", "unknown backend 'gpu'");
+  expectFailure(lr + p("out.jpg"), "must be a .png file");
+  expectFailure(p("left.png") + " " + p("right.png") + " " + p("no_dir/out.png"), "cannot write");
+}
+
+TEST_F(DisparityCli, NeverOverwritesAnInput) {
+  const auto before = fs::file_size(p("right.png"));
+  const RunResult r = runTool(p("left.png") + " " + p("right.png") + " " + p("right.png"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("refusing to overwrite an input"), std::string::npos) << r.output;
+  EXPECT_EQ(fs::file_size(p("right.png")), before);
+}
+
+}  // namespace
+}  // namespace lidar_sgm
