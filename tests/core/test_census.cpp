@@ -8,6 +8,7 @@
 
 #include <bitset>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "lidar_sgm/core/stages.hpp"
@@ -16,6 +17,10 @@ namespace lidar_sgm {
 namespace {
 
 int popcount(std::uint64_t v) { return static_cast<int>(std::bitset<64>(v).count()); }
+
+// Note: the census overloads take ImageView<const uint8_t> / ImageView<const uint16_t>; a mutable
+// ImageView<T> is ambiguous between them (its conversion operator deduces the target pixel type),
+// so the tests pass const views.
 
 // Bit of the 9x7 census that compares the neighbour at (dx, dy) with the centre (hand formula
 // of the header comment, used to name bits; the expected values below are written out as hex).
@@ -35,7 +40,7 @@ TEST(CensusTransform, BitPositionsOn9x7Image) {
   image(3, 3) = 200;  // dx=-1, dy= 0: greater than the centre                   -> 0
   // Every other neighbour equals the centre: not strictly less -> 0.
   Image<std::uint64_t> census(9, 7);
-  cpu_ref::censusTransform(image.view(), CensusType::Census9x7, census.view());
+  cpu_ref::censusTransform(std::as_const(image).view(), CensusType::Census9x7, census.view());
 
   // (1<<61) | (1<<39) | (1<<30) | 1 = 0x2000008040000001
   const std::uint64_t expected = 0x2000008040000001ull;
@@ -64,9 +69,9 @@ TEST(CensusTransform, PixelDarkerThanAllNeighboursHas62Bits) {
   Image<std::uint8_t> bright(9, 7, 254);
   bright(4, 3) = 255;
   Image<std::uint64_t> census(9, 7);
-  cpu_ref::censusTransform(dark.view(), CensusType::Census9x7, census.view());
+  cpu_ref::censusTransform(std::as_const(dark).view(), CensusType::Census9x7, census.view());
   EXPECT_EQ(census(4, 3), 0u);
-  cpu_ref::censusTransform(bright.view(), CensusType::Census9x7, census.view());
+  cpu_ref::censusTransform(std::as_const(bright).view(), CensusType::Census9x7, census.view());
   EXPECT_EQ(census(4, 3), 0x3FFFFFFFFFFFFFFFull);
   EXPECT_EQ(popcount(census(4, 3)), 62);
 }
@@ -75,7 +80,7 @@ TEST(CensusTransform, ConstantImageGivesZero) {
   Image<std::uint8_t> image(11, 9, 77);
   Image<std::uint64_t> census(11, 9, 0xDEADull);
   for (CensusType type : {CensusType::Census9x7, CensusType::CenterSymmetric9x7}) {
-    cpu_ref::censusTransform(image.view(), type, census.view());
+    cpu_ref::censusTransform(std::as_const(image).view(), type, census.view());
     for (int y = 0; y < 9; ++y) {
       for (int x = 0; x < 11; ++x) EXPECT_EQ(census(x, y), 0u) << x << "," << y;
     }
@@ -99,7 +104,7 @@ TEST(CensusTransform, CornerSeesReplicatedBorder) {
   image(0, 1) = 7;
   image(1, 1) = 5;
   Image<std::uint64_t> census(2, 2);
-  cpu_ref::censusTransform(image.view(), CensusType::Census9x7, census.view());
+  cpu_ref::censusTransform(std::as_const(image).view(), CensusType::Census9x7, census.view());
   EXPECT_EQ(census(0, 0), 0x01E0F07878000000ull);
   EXPECT_EQ(popcount(census(0, 0)), 16);
   EXPECT_EQ(census(1, 1), 0x03E1F0F800000000ull);
@@ -122,7 +127,7 @@ TEST(CensusTransform, CenterSymmetricBitsByHand) {
   image(3, 3) = 50;   // pair dx=-1,dy=0 (k=30, bit 0): a=50 < b=I(5,3)=100 -> 1
   image(4, 0) = 200;  // pair dx=0,dy=-3 (k=4, bit 26): a=200 < b=I(4,6)=100? no -> 0
   Image<std::uint64_t> census(9, 7);
-  cpu_ref::censusTransform(image.view(), CensusType::CenterSymmetric9x7, census.view());
+  cpu_ref::censusTransform(std::as_const(image).view(), CensusType::CenterSymmetric9x7, census.view());
   // (1<<30) | (1<<20) | 1 = 0x40100001
   EXPECT_EQ(census(4, 3), 0x40100001ull);
   EXPECT_EQ(popcount(census(4, 3)), 3);
@@ -140,7 +145,7 @@ TEST(CensusTransform, CenterSymmetricAllPairsSet) {
     for (int x = 0; x < 9; ++x) image(x, y) = static_cast<std::uint8_t>(10 * y);
   }
   Image<std::uint64_t> census(9, 7);
-  cpu_ref::censusTransform(image.view(), CensusType::CenterSymmetric9x7, census.view());
+  cpu_ref::censusTransform(std::as_const(image).view(), CensusType::CenterSymmetric9x7, census.view());
   EXPECT_EQ(census(4, 3), 0x7FFFFFF0ull);
   EXPECT_EQ(popcount(census(4, 3)), 27);
 }
@@ -166,8 +171,8 @@ TEST(CensusTransform, SixteenBitEqualsEightBitTimes257) {
   for (CensusType type : {CensusType::Census9x7, CensusType::CenterSymmetric9x7}) {
     Image<std::uint64_t> census8(width, height);
     Image<std::uint64_t> census16(width, height, ~0ull);
-    cpu_ref::censusTransform(image8.view(), type, census8.view());
-    cpu_ref::censusTransform(image16.view(), type, census16.view());
+    cpu_ref::censusTransform(std::as_const(image8).view(), type, census8.view());
+    cpu_ref::censusTransform(std::as_const(image16).view(), type, census16.view());
     int nonZero = 0;
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
@@ -196,7 +201,7 @@ TEST(CensusTransform, PaddedStrideEqualsDenseCopy) {
   const std::uint64_t sentinel = 0x0123456789ABCDEFull;
   for (CensusType type : {CensusType::Census9x7, CensusType::CenterSymmetric9x7}) {
     Image<std::uint64_t> expected(width, height);
-    cpu_ref::censusTransform(dense.view(), type, expected.view());
+    cpu_ref::censusTransform(std::as_const(dense).view(), type, expected.view());
     std::vector<std::uint64_t> out(static_cast<std::size_t>(stride) * height, sentinel);
     cpu_ref::censusTransform(paddedView, type,
                              ImageView<std::uint64_t>(out.data(), width, height, stride));
