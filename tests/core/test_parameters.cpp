@@ -67,7 +67,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadParameter{"uniquenessRatio", [](Parameters& p) { p.uniquenessRatio = 100; }, "[0, 99]"},
         BadParameter{"disp12MaxDiff", [](Parameters& p) { p.disp12MaxDiff = -1; }, "[0, numDisparities (128)]"},
         BadParameter{"lidarCoverageRows", [](Parameters& p) { p.lidarCoverageRows = 0; }, "[1, 64]"},
-        BadParameter{"medianSize", [](Parameters& p) { p.medianSize = 7; }, "0 (off), 3 or 5"}));
+        BadParameter{"medianSize", [](Parameters& p) { p.medianSize = 7; }, "0 (off), 3 or 5"}),
+    [](const ::testing::TestParamInfo<BadParameter>& paramInfo) {
+      return std::string(paramInfo.param.name) + std::to_string(paramInfo.index);
+    });
 
 TEST(Parameters, SetParametersKeepsTheOldOnesWhenRejected) {
   auto matcher = Matcher::create(Backend::CpuRef);

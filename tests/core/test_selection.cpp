@@ -235,6 +235,22 @@ TEST(LeftRightCheck, ConsistentKeptInconsistentRemoved) {
   c.expectInvalid(6);        // right index -1
 }
 
+TEST(LeftRightCheck, RightPixelWithoutWinnerRemoved) {
+  // x = 1, best 0 -> xr = 1, rightIndex(1) = -1: no right winner. |-1 - 0| = 1 would pass a
+  // tolerance of 1 if -1 were compared as an index; it must be removed.
+  Selected selected(3, 1);
+  Image<std::int16_t> rightIndex(3, 1, -1);
+  for (int x = 0; x < 3; ++x) {
+    selected.bestIndex(x, 0) = 0;
+    selected.disparity16(x, 0) = 5;
+  }
+  cpu_ref::leftRightCheck(selected.view(), rightIndex.view(), ImageView<const std::uint8_t>(), 0, 1, true);
+  for (int x = 0; x < 3; ++x) {
+    EXPECT_EQ(selected.disparity16(x, 0), kInvalidDisparity) << x;
+    EXPECT_EQ(selected.bestIndex(x, 0), -1) << x;
+  }
+}
+
 TEST(LeftRightCheck, Disp12MaxDiffTolerance) {
   LrCase strict;
   strict.run(ImageView<const std::uint8_t>(), 0, 0, true);
@@ -378,6 +394,12 @@ TEST(MedianFilter, FiveByFiveByHand) {
   EXPECT_EQ(out(4, 4), 16);
   // (0,4): x 0..2, y 2..4: 4 8 10 11 [13] 15 17 20 22 -> 13.
   EXPECT_EQ(out(0, 4), 13);
+  // (0,2): x 0..2, all rows, 15 values: 1 3 4 8 9 10 11 [12] 13 15 17 20 21 22 25 -> 12.
+  EXPECT_EQ(out(0, 2), 12);
+  // (4,2): x 2..4, all rows: 1 2 5 6 7 11 14 [15] 16 18 19 22 23 24 25 -> 15.
+  EXPECT_EQ(out(4, 2), 15);
+  // (3,0): x 1..4, y 0..2, 12 values: 1 2 3 4 6 [7] 11 14 18 21 23 25 -> lower median 7 (upper 11).
+  EXPECT_EQ(out(3, 0), 7);
 }
 
 TEST(MedianFilter, InvalidPixelsIgnored) {

@@ -24,10 +24,10 @@ struct ImageView {
       : data(data_), width(width_), height(height_), stride(stride_) {}
   ImageView(T* data_, int width_, int height_) : ImageView(data_, width_, height_, width_) {}
 
-  /// Views of mutable pixels convert to views of const pixels.
+  /// Views of mutable pixels convert to views of the same, const pixels (as T* to const T*).
   template <typename U = T, typename = std::enable_if_t<!std::is_const<U>::value>>
-  operator ImageView<const U>() const {  // NOLINT(google-explicit-constructor): mirrors T* -> const T*
-    return ImageView<const U>(data, width, height, stride);
+  operator ImageView<const T>() const {  // NOLINT(google-explicit-constructor): mirrors T* -> const T*
+    return ImageView<const T>(data, width, height, stride);
   }
 
   bool empty() const { return data == nullptr || width <= 0 || height <= 0; }

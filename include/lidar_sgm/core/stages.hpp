@@ -63,7 +63,8 @@ void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo
                ImageView<const std::uint8_t> support, int alphaWeight256,
                bool stereoCostWithoutLidar, MatchingCostVolume& fused);
 
-/// SGM (Eq. 1) along 4 (left/right/up/down) or 8 (+ diagonal) paths; sum = sum over paths.
+/// SGM (Eq. 1) along 4 (left/right/up/down) or 8 (+ diagonal) paths; `sum` (resized to the
+/// cost's size) receives the sum over paths.
 void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths,
                     AggregatedCostVolume& sum);
 
@@ -85,7 +86,7 @@ void rightDisparityIndex(const AggregatedCostVolume& sum, int minDisparity,
 /// |leftIndex - rightIndex(x - d)| <= disp12MaxDiff, and never discarded when the LiDAR
 /// covers it (support = 1, see lidarCoverage) or when it has no counterpart in the right image (x - d < 0):
 /// the check cannot judge those. `keepNoCounterpart` = false (stereo-only) invalidates pixels
-/// without counterpart instead, since nothing measured them.
+/// without counterpart instead, since nothing measured them (stereo-only has no LiDAR support).
 void leftRightCheck(SelectedDisparity disparity, ImageView<const std::int16_t> rightIndex,
                     ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
                     bool keepNoCounterpart);

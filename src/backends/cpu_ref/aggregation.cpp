@@ -59,6 +59,7 @@ int pathCostStep(int matchingCost, const std::uint16_t* previous, int numDispari
 void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths,
                     AggregatedCostVolume& sum) {
   AggregatedCostVolume pathCost(cost.width(), cost.height(), cost.numDisparities());
+  sum.resize(cost.width(), cost.height(), cost.numDisparities());
   std::fill(sum.data(), sum.data() + sum.size(), std::uint16_t{0});
   for (int r = 0; r < paths; ++r) {
     aggregateDirection(cost, kDirections[r], P1, P2, pathCost);
