@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "common/synthetic_stereo.hpp"
 #include "lidar_sgm/core/matcher.hpp"
@@ -126,7 +125,7 @@ TEST(Matcher, SixteenBitImagesMatchLikeEightBit) {
   Image<std::int16_t> out8(60, 30);
   Image<std::int16_t> out16(60, 30);
   matcher->compute(s.left.view(), s.right.view(), nullptr, out8.view());
-  matcher->compute(std::as_const(left16).view(), std::as_const(right16).view(), nullptr, out16.view());
+  matcher->compute(left16.view(), right16.view(), nullptr, out16.view());  // mutable views convert too
   for (int y = 0; y < 30; ++y) {
     for (int x = 0; x < 60; ++x) ASSERT_EQ(out8(x, y), out16(x, y));
   }

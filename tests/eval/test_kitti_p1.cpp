@@ -59,7 +59,8 @@ TEST_P(KittiP1, FusedBeatsStereoAndMeetsTheTargets) {
   EXPECT_GT(lidarOnly.density, 0.999);
 }
 
-INSTANTIATE_TEST_SUITE_P(Kitti2015, KittiP1, ::testing::Values("000000_10", "000001_10"));
+INSTANTIATE_TEST_SUITE_P(Kitti2015, KittiP1, ::testing::Values("000000_10", "000001_10"),
+                         [](const ::testing::TestParamInfo<std::string>& paramInfo) { return "frame" + paramInfo.param; });
 
 }  // namespace
 }  // namespace lidar_sgm

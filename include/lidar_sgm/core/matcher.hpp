@@ -54,6 +54,8 @@ struct GrayImageView {
   GrayImageView() = default;
   GrayImageView(ImageView<const std::uint8_t> image) : gray8(image) {}    // NOLINT: view conversion
   GrayImageView(ImageView<const std::uint16_t> image) : gray16(image) {}  // NOLINT: view conversion
+  GrayImageView(ImageView<std::uint8_t> image) : gray8(image) {}          // NOLINT: view conversion
+  GrayImageView(ImageView<std::uint16_t> image) : gray16(image) {}        // NOLINT: view conversion
   bool empty() const { return gray8.empty() && gray16.empty(); }
   int width() const { return gray8.empty() ? gray16.width : gray8.width; }
   int height() const { return gray8.empty() ? gray16.height : gray8.height; }
