@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs dependencies, builds, and runs LiDAR-SGM on a sample frame: stereo-only, LiDAR-only
+# Installs dependencies, builds, and runs LiDAR-SGM on the bundled sample frame (data/sample): stereo-only, LiDAR-only
 # and fused, writing KITTI disparity PNGs and color pictures to out/demo/.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -10,18 +10,16 @@ out="$root/out/demo"
 mkdir -p "$out"
 tool="$build_dir/apps/lidar_sgm_disparity"
 
-# Until the project's own synthetic sample lands in data/ (issue 3), the demo uses the KITTI
-# frame with a projected LiDAR scan from ../shared/data (read in place, never copied).
-sample="${LIDAR_SGM_DATA:-$root/../shared/data}/kitti_stereo_sparse_lidar_disparity_sample"
-if [ ! -f "$sample/left.png" ]; then
-  echo "demo: no sample frame at $sample (set LIDAR_SGM_DATA to the folder holding it)" >&2
-  exit 1
-fi
-"$tool" "$sample/left.png" "$sample/right.png" "$out/stereo.png" -color "$out/stereo_color.png"
-"$tool" "$sample/left.png" "$out/lidar.png" -lidar "$sample/sparse_lidar_disparity.png" -color "$out/lidar_color.png"
-"$tool" "$sample/left.png" "$sample/right.png" "$out/fused.png" -lidar "$sample/sparse_lidar_disparity.png" \
-  -color "$out/fused_color.png"
+# The bundled sample: one synthetic street frame the project renders itself (data/sample/README.md).
+sample="$root/data/sample"
+left="$sample/image_2/000000.png"
+right="$sample/image_3/000000.png"
+lidar="$sample/lidar_disp/000000.png"
+"$tool" "$left" "$right" "$out/stereo.png" -color "$out/stereo_color.png"
+"$tool" "$left" "$out/lidar.png" -lidar "$lidar" -color "$out/lidar_color.png"
+"$tool" "$left" "$right" "$out/fused.png" -lidar "$lidar" -color "$out/fused_color.png"
 echo
 echo "Results in $out:"
 echo "  stereo.png lidar.png fused.png                  KITTI disparity (uint16, disparity*256, 0 = invalid)"
 echo "  stereo_color.png lidar_color.png fused_color.png color pictures (invalid = black)"
+echo "Ground truth for comparison: $sample/disp_gt/000000.png (same format)"

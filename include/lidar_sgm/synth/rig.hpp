@@ -1,0 +1,44 @@
+#pragma once
+/// @file rig.hpp  The sensor rig: a rectified stereo pair, an optional third camera above the left
+/// one, and a LiDAR mounted behind and above them (like KITTI's), plus its KITTI calibration text.
+
+#include <string>
+
+#include "lidar_sgm/synth/render.hpp"
+
+namespace lidar_sgm {
+namespace synth {
+
+struct StereoRig {
+  int width = 1242;
+  int height = 375;
+  double focal = 721.5377;     ///< KITTI's rectified focal length [px] at 1242 px
+  double cx = 609.5593;
+  double cy = 172.854;
+  double baseline = 0.54;      ///< [m], right camera to the right of the left one
+  double cameraHeight = 1.65;  ///< left camera above the road [m]
+  double thirdCameraOffset = 0.20;  ///< third camera above the left one, same orientation [m]
+  /// LiDAR origin relative to the left camera, world axes: 0.27 m behind, 0.08 m above (KITTI).
+  Vec3 lidarOffset{-0.27, 0.0, 0.08};
+
+  /// KITTI's intrinsics scaled to `width` x `height` (f and cx with the width, cy with the height).
+  static StereoRig kittiLike(int width, int height, double baseline);
+
+  Vec3 leftPosition() const { return {0.0, 0.0, cameraHeight}; }
+  Vec3 lidarPosition() const { return leftPosition() + lidarOffset; }
+  PinholeCamera left() const;
+  PinholeCamera right() const;
+  PinholeCamera up() const;
+
+  /// A LiDAR-frame point (x forward, y left, z up) in the left camera's KITTI axes (x right,
+  /// y down, z forward): the transform written as Tr_velo_to_cam.
+  Vec3 lidarToCamera(const Vec3& lidarPoint) const;
+};
+
+/// KITTI object-benchmark calibration: P0..P3 (P2 = left, P3 = right with P3[0][3] = -f*b; P0 and P1
+/// equal P2 and P3, as this rig has no separate gray cameras), R0_rect = I, Tr_velo_to_cam,
+/// Tr_imu_to_velo = [I|0] (no IMU), and `P_up:` for the third camera when `withThirdCamera`.
+std::string kittiCalibrationText(const StereoRig& rig, bool withThirdCamera);
+
+}  // namespace synth
+}  // namespace lidar_sgm
