@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "common/arguments.hpp"
+#include "common/output_paths.hpp"
+#include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/io/image_io.hpp"
@@ -14,10 +16,13 @@
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
 using lidar_sgm::apps::Timer;
+using lidar_sgm::apps::joined;
+using lidar_sgm::apps::parametersFrom;
+using lidar_sgm::apps::samePath;
+using lidar_sgm::apps::sgmFlagOptions;
+using lidar_sgm::apps::sgmValueOptions;
 
 namespace {
-
-const lidar_sgm::Parameters kDefaults;
 
 void printHelp(const char* program) {
   std::printf(
@@ -30,80 +35,19 @@ void printHelp(const char* program) {
       "  -lidar SPARSE.png        sparse LiDAR disparity, KITTI format (uint16, disparity*256, 0 = none)\n"
       "  -lidar_depth DEPTH.png   sparse LiDAR depth, KITTI depth format (uint16, metres*256, 0 = none)\n"
       "  -fb F                    focal length [px] * baseline [m] for -lidar_depth (d = F/z)\n"
-      "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
-      "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
-      "  -lidar_cost_cap C        upper bound of the LiDAR cost, in [1, 255] (default: %d)\n"
-      "  -num_disparities N       disparity search range, multiple of 16 (default: %d)\n"
-      "  -min_disparity M         smallest disparity (default: %d)\n"
-      "  -paths 4|8               SGM aggregation paths (default: %d)\n"
-      "  -p1 P1                   small-jump penalty (default: %d)\n"
-      "  -p2 P2                   large-jump penalty, > P1 (default: %d)\n"
-      "  -uniqueness U            uniqueness ratio [%%], 0 = off (default: %d)\n"
-      "  -no_lr_check             skip the left-right consistency check (default: check on)\n"
-      "  -lr_max_diff D           largest left-right difference [px] (default: %d)\n"
-      "  -median 0|3|5            median filter size, 0 = off (default: %d)\n"
-      "  -census 9x7|cs9x7        census window: full or centre-symmetric (default: 9x7)\n"
-      "  -stereo_cost_without_lidar  full C_S where no LiDAR point is (default: the paper's (1-alpha)*C_S)\n"
-      "  -lidar_coverage_rows R   LR check spares pixels with a LiDAR point within +-R rows (default: %d)\n"
-      "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto)\n"
+      "%s"
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -h                       this help\n",
-      program, kDefaults.alpha, kDefaults.sigma, kDefaults.lidarCostCap, kDefaults.numDisparities,
-      kDefaults.minDisparity, kDefaults.paths, kDefaults.P1, kDefaults.P2, kDefaults.uniquenessRatio,
-      kDefaults.disp12MaxDiff, kDefaults.medianSize, kDefaults.lidarCoverageRows);
-}
-
-lidar_sgm::Parameters parametersFrom(const Arguments& args) {
-  lidar_sgm::Parameters p;
-  p.alpha = static_cast<float>(args.number("alpha", p.alpha));
-  p.sigma = static_cast<float>(args.number("sigma", p.sigma));
-  p.lidarCostCap = args.integer("lidar_cost_cap", p.lidarCostCap);
-  p.numDisparities = args.integer("num_disparities", p.numDisparities);
-  p.minDisparity = args.integer("min_disparity", p.minDisparity);
-  p.paths = args.integer("paths", p.paths);
-  p.P1 = args.integer("p1", p.P1);
-  p.P2 = args.integer("p2", p.P2);
-  p.uniquenessRatio = args.integer("uniqueness", p.uniquenessRatio);
-  p.lrCheck = !args.has("no_lr_check");
-  p.disp12MaxDiff = args.integer("lr_max_diff", p.disp12MaxDiff);
-  p.medianSize = args.integer("median", p.medianSize);
-  p.stereoCostWithoutLidar = args.has("stereo_cost_without_lidar");
-  p.lidarCoverageRows = args.integer("lidar_coverage_rows", p.lidarCoverageRows);
-  const std::string census = args.text("census", "9x7");
-  if (census == "9x7") {
-    p.censusType = lidar_sgm::CensusType::Census9x7;
-  } else if (census == "cs9x7") {
-    p.censusType = lidar_sgm::CensusType::CenterSymmetric9x7;
-  } else {
-    throw std::invalid_argument("option -census: '" + census + "' must be 9x7 or cs9x7");
-  }
-  lidar_sgm::validate(p);
-  return p;
-}
-
-bool samePath(const std::string& a, const std::string& b) {
-  std::error_code ec;
-  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
-  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+      program, lidar_sgm::apps::sgmOptionsHelp().c_str());
 }
 
 void requirePngOutput(const std::string& path, const std::vector<std::string>& inputs) {
-  if (fs::path(path).extension() != ".png") {
-    throw std::invalid_argument("output '" + path + "' must be a .png file");
-  }
-  for (const std::string& input : inputs) {
-    if (samePath(path, input)) {
-      throw std::invalid_argument("output '" + path + "' is the input '" + input + "'; refusing to overwrite an input");
-    }
-  }
+  lidar_sgm::apps::requireOutput(path, {".png"}, inputs);
 }
 
 int run(int argc, char** argv) {
-  const Arguments args(argc, argv,
-                       {"lidar", "lidar_depth", "fb", "alpha", "sigma", "lidar_cost_cap", "num_disparities",
-                        "min_disparity", "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
-                        "backend", "color", "lidar_coverage_rows"},
-                       {"h", "help", "no_lr_check", "stereo_cost_without_lidar"});
+  const Arguments args(argc, argv, joined(sgmValueOptions(), {"lidar", "lidar_depth", "fb", "color"}),
+                       joined(sgmFlagOptions(), {"h", "help"}));
   if (args.has("h") || args.has("help")) {
     printHelp(argv[0]);
     return 0;

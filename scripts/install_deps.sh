@@ -8,6 +8,7 @@ packages=(
   libopencv-dev                # io and tools: imgcodecs, imgproc
   libgtest-dev libgmock-dev    # tests
   libeigen3-dev                # geometry
+  libpcl-dev                   # the PCL class, cloud files, lidar_sgm_densify
 )
 
 missing=()

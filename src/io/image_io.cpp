@@ -7,6 +7,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "atomic_file.hpp"
 #include <unistd.h>
 
 namespace lidar_sgm {
@@ -135,30 +137,19 @@ cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxD
 }
 
 void writeImageAtomically(const std::string& path, const cv::Mat& image) {
-  const fs::path target(path);
-  // Same directory (so rename is atomic) and same extension (imwrite picks the format by it).
-  fs::path temporary = target;
-  temporary.replace_filename("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                             target.extension().string());
+  const std::string temporary = detail::temporaryPathFor(path);
   bool written = false;
   try {
-    written = cv::imwrite(temporary.string(), image);
+    written = cv::imwrite(temporary, image);
   } catch (const cv::Exception& e) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
+    detail::discardTemporary(temporary);
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
-  std::error_code ec;
   if (!written) {
-    fs::remove(temporary, ec);
+    detail::discardTemporary(temporary);
     throw std::runtime_error("cannot write '" + path + "': the directory is not writable or the extension is unknown");
   }
-  fs::rename(temporary, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-  }
+  detail::commitTemporary(temporary, path);
 }
 
 }  // namespace io

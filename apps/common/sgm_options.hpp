@@ -1,0 +1,24 @@
+#pragma once
+// The matcher's command-line options, shared by every tool that runs LiDAR-SGM.
+
+#include <set>
+#include <string>
+
+#include "common/arguments.hpp"
+#include "lidar_sgm/core/parameters.hpp"
+
+namespace lidar_sgm {
+namespace apps {
+
+/// Option names taking a value (-alpha 0.7 ...) and flags (-no_lr_check ...).
+const std::set<std::string>& sgmValueOptions();
+const std::set<std::string>& sgmFlagOptions();
+/// The help lines for those options, with their defaults.
+std::string sgmOptionsHelp();
+/// Parameters from the options, validated (std::invalid_argument names the bad one).
+Parameters parametersFrom(const Arguments& args);
+/// The union of two option sets.
+std::set<std::string> joined(std::set<std::string> a, const std::set<std::string>& b);
+
+}  // namespace apps
+}  // namespace lidar_sgm

@@ -1,0 +1,230 @@
+// lidar_sgm_densify: a sparse LiDAR scan (and optionally a rectified stereo pair) in, a dense,
+// colored point cloud out. The command-line face of SGMDensification.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <pcl/console/print.h>
+
+#include "common/arguments.hpp"
+#include "common/output_paths.hpp"
+#include "common/sgm_options.hpp"
+#include "common/timer.hpp"
+#include "lidar_sgm/io/calibration_io.hpp"
+#include "lidar_sgm/io/cloud_io.hpp"
+#include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/io/pcl_image.hpp"
+#include "lidar_sgm/pcl/sgm_densification.hpp"
+
+namespace fs = std::filesystem;
+using lidar_sgm::apps::Arguments;
+using lidar_sgm::apps::Timer;
+
+namespace {
+
+void printHelp(const char* program) {
+  const lidar_sgm::geometry::ProjectionOptions projection;
+  const lidar_sgm::geometry::ReprojectionOptions reprojection;
+  std::printf(
+      "Syntax is: %s INPUT.{pcd,bin,ply} OUTPUT.{pcd,ply} -calib CALIB [-left L.png] [-right R.png] <options>\n"
+      "  INPUT   the LiDAR scan: KITTI velodyne .bin, or PCD/PLY with x, y, z fields (LiDAR frame, metres)\n"
+      "  OUTPUT  the dense cloud: binary-compressed PCD or binary PLY; XYZRGB when there is a left image, else XYZ\n"
+      "  -calib CALIB             KITTI object calib (.txt), KITTI raw (calib_cam_to_cam.txt or its folder,\n"
+      "                           with calib_velo_to_cam.txt beside it) or our YAML (.yaml/.yml)\n"
+      "  -left L.png -right R.png rectified stereo pair: fused LiDAR-SGM (default without them: LiDAR-only)\n"
+      "  -left L.png              alone: LiDAR-only SGM, the output colored from L\n"
+      "  -image_size WxH          image size when neither the calibration nor an image gives it (KITTI object calib)\n"
+      "where options are:\n"
+      "%s"
+      "  -keep_organized          one point per pixel, NaN where there is none (default: valid points only)\n"
+      "  -frame lidar|camera      output frame (default: lidar, the input's frame)\n"
+      "  -max_depth M             drop output points deeper than M metres (default: %g)\n"
+      "  -stride S                every S-th pixel in x and y (default: %d)\n"
+      "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with a point\n"
+      "                           more than max(%g px, %g*d) nearer within +-%d columns, +-%d rows)\n"
+      "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
+      "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
+      "  -h                       this help\n",
+      program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
+      projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
+      projection.occlusion.halfHeight);
+}
+
+/// "1242x375" -> (1242, 375).
+void parseImageSize(const std::string& text, int& width, int& height) {
+  const std::size_t x = text.find('x');
+  try {
+    std::size_t used = 0;
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    width = std::stoi(text.substr(0, x), &used);
+    if (used != x) throw std::invalid_argument("trailing");
+    height = std::stoi(text.substr(x + 1), &used);
+    if (used != text.size() - x - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw std::invalid_argument("option -image_size: '" + text + "' is not WIDTHxHEIGHT (e.g. 1242x375)");
+  }
+  if (width <= 0 || height <= 0) throw std::invalid_argument("option -image_size: '" + text + "' must be positive");
+}
+
+std::size_t validPixels(const lidar_sgm::Image<std::int16_t>& disparity) {
+  std::size_t valid = 0;
+  for (int y = 0; y < disparity.height(); ++y) {
+    for (int x = 0; x < disparity.width(); ++x) valid += disparity(x, y) != lidar_sgm::kInvalidDisparity ? 1 : 0;
+  }
+  return valid;
+}
+
+template <typename PointOutT>
+int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan,
+            const lidar_sgm::geometry::StereoCalibration& calibration, const cv::Mat& left, const cv::Mat& right) {
+  lidar_sgm::SGMDensification<pcl::PointXYZI, PointOutT> sgm;
+  sgm.setInputCloud(scan);
+  sgm.setCalibration(calibration);
+  const lidar_sgm::Parameters params = lidar_sgm::apps::parametersFrom(args);
+  sgm.setParameters(params);
+  sgm.setBackend(lidar_sgm::backendFromString(args.text("backend", "auto")));
+  lidar_sgm::geometry::ProjectionOptions projection;
+  projection.occlusion.enabled = !args.has("no_occlusion_filter");
+  sgm.setProjectionOptions(projection);
+  sgm.setKeepOrganized(args.has("keep_organized"));
+  const std::string frame = args.text("frame", "lidar");
+  if (frame != "lidar" && frame != "camera") {
+    throw std::invalid_argument("option -frame: '" + frame + "' must be lidar or camera");
+  }
+  sgm.setOutputFrame(frame == "camera" ? lidar_sgm::geometry::OutputFrame::Camera
+                                       : lidar_sgm::geometry::OutputFrame::Lidar);
+  sgm.setMaxDepth(args.number("max_depth", sgm.getMaxDepth()));
+  sgm.setStride(args.integer("stride", sgm.getStride()));
+  if (!right.empty()) {
+    sgm.setStereoPair(lidar_sgm::io::toPclImage(left), lidar_sgm::io::toPclImage(right));
+  } else if (!left.empty()) {
+    sgm.setColorImage(lidar_sgm::io::toPclImage(left));
+  }
+
+  pcl::PointCloud<PointOutT> dense;
+  sgm.filter(dense);
+  if (!sgm.getLastError().empty()) throw std::runtime_error(sgm.getLastError());
+  const auto& timings = sgm.getTimings();
+  const auto& stats = sgm.getProjectedLidar().stats;
+  const auto& used = sgm.getDisparityImage();
+  std::printf("Projecting [done, %.0f ms : %s]\n", timings.project, stats.describe().c_str());
+  std::printf("Matching (%s, alpha %g) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity]\n",
+              lidar_sgm::toString(sgm.getLastMode()).c_str(),
+              sgm.getLastMode() == lidar_sgm::MatchMode::Fused ? params.alpha : 1.0, timings.match, used.width(),
+              used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()));
+  std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
+              dense.width, dense.height, frame.c_str());
+
+  const std::string outPath = args.positionals()[1];
+  const std::string disparityPath = args.text("disparity", "");
+  const std::string colorPath = args.text("color", "");
+  Timer saveTimer;
+  std::printf("Saving %s", outPath.c_str());
+  std::fflush(stdout);
+  lidar_sgm::io::writeCloud(outPath, dense);
+  if (!disparityPath.empty()) {
+    std::printf(", %s", disparityPath.c_str());
+    lidar_sgm::io::writeImageAtomically(disparityPath, lidar_sgm::io::toKittiDisparity(used.view()));
+  }
+  if (!colorPath.empty()) {
+    std::printf(", %s", colorPath.c_str());
+    lidar_sgm::io::writeImageAtomically(
+        colorPath, lidar_sgm::io::colorizeDisparity(used.view(), params.minDisparity + params.numDisparities));
+  }
+  std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
+  return 0;
+}
+
+int run(int argc, char** argv) {
+  using lidar_sgm::apps::joined;
+  const Arguments args(argc, argv,
+                       joined(lidar_sgm::apps::sgmValueOptions(),
+                              {"calib", "left", "right", "image_size", "frame", "max_depth", "stride", "disparity", "color"}),
+                       joined(lidar_sgm::apps::sgmFlagOptions(), {"h", "help", "keep_organized", "no_occlusion_filter"}));
+  if (args.has("h") || args.has("help")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  const std::vector<std::string>& files = args.positionals();
+  if (files.size() != 2) {
+    printHelp(argv[0]);
+    throw std::invalid_argument("expected INPUT and OUTPUT, got " + std::to_string(files.size()) + " file name(s)");
+  }
+  const std::string inputPath = files[0];
+  const std::string outPath = files[1];
+  const std::string calibPath = args.text("calib", "");
+  const std::string leftPath = args.text("left", "");
+  const std::string rightPath = args.text("right", "");
+  if (calibPath.empty()) throw std::invalid_argument("-calib CALIB is required (KITTI object/raw calib or YAML)");
+  if (!rightPath.empty() && leftPath.empty()) throw std::invalid_argument("-right needs -left");
+  // Every output is checked before any work: extension, not an input, not another output.
+  const std::vector<std::string> inputs{inputPath, calibPath, leftPath, rightPath};
+  lidar_sgm::apps::requireOutput(outPath, {".pcd", ".ply"}, inputs);
+  std::vector<std::string> outputs{outPath};
+  for (const char* option : {"disparity", "color"}) {
+    const std::string path = args.text(option, "");
+    if (path.empty()) continue;
+    lidar_sgm::apps::requireOutput(path, {".png"}, inputs);
+    for (const std::string& other : outputs) {
+      if (lidar_sgm::apps::samePath(path, other)) {
+        throw std::invalid_argument(std::string("-") + option + " '" + path + "' is also another output");
+      }
+    }
+    outputs.push_back(path);
+  }
+  lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
+  int width = 0;
+  int height = 0;
+  if (args.has("image_size")) parseImageSize(args.text("image_size", ""), width, height);
+
+  Timer loadTimer;
+  std::printf("Loading %s", inputPath.c_str());
+  std::fflush(stdout);
+  const pcl::PointCloud<pcl::PointXYZI>::Ptr scan(new pcl::PointCloud<pcl::PointXYZI>(lidar_sgm::io::readCloud(inputPath)));
+  std::printf(" [done, %.0f ms : %zu points]\n", loadTimer.elapsedMs(), scan->size());
+  if (scan->empty()) throw std::invalid_argument("the input cloud '" + inputPath + "' has no points");
+
+  Timer calibTimer;
+  std::printf("Loading %s", calibPath.c_str());
+  const lidar_sgm::geometry::StereoCalibration calibration = lidar_sgm::io::readCalibration(calibPath, width, height);
+  std::printf(" [done, %.0f ms : %s]\n", calibTimer.elapsedMs(), lidar_sgm::geometry::describe(calibration).c_str());
+
+  cv::Mat left;
+  cv::Mat right;
+  if (!leftPath.empty()) {
+    Timer imageTimer;
+    std::printf("Loading %s", leftPath.c_str());
+    left = lidar_sgm::io::readColorImage(leftPath);
+    if (!rightPath.empty()) {
+      std::printf(", %s", rightPath.c_str());
+      right = lidar_sgm::io::readColorImage(rightPath);
+      if (right.size() != left.size()) {
+        throw std::invalid_argument("the left image is " + std::to_string(left.cols) + "x" + std::to_string(left.rows) +
+                                    " but the right image is " + std::to_string(right.cols) + "x" +
+                                    std::to_string(right.rows));
+      }
+    }
+    std::printf(" [done, %.0f ms : %dx%d]\n", imageTimer.elapsedMs(), left.cols, left.rows);
+  }
+  // Colored output when an image can color it.
+  return left.empty() ? densify<pcl::PointXYZ>(args, scan, calibration, left, right)
+                      : densify<pcl::PointXYZRGB>(args, scan, calibration, left, right);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Our messages name the problem; PCL's own console errors would repeat them.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "\nError: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,40 @@
+#pragma once
+/// @file calibration_io.hpp  Reading a StereoCalibration from KITTI object, KITTI raw and our
+/// own YAML files, and writing the YAML one.
+///
+/// Every reader throws std::runtime_error naming the file, and where it applies the line and
+/// the key, for a missing file, a missing key, a malformed or non-finite number, or a
+/// calibration that geometry::StereoCalibration::validate() rejects.
+
+#include <string>
+
+#include "lidar_sgm/geometry/calibration.hpp"
+
+namespace lidar_sgm {
+namespace io {
+
+/// KITTI object-benchmark format (calib/000000.txt): P2 (left color camera), P3 (right),
+/// R0_rect, Tr_velo_to_cam; other keys (P0, P1, Tr_imu_to_velo, ...) are ignored.
+///   K = P2's left 3x3, baseline = (P2[0,3] - P3[0,3]) / fx,
+///   T_cam_lidar = [I | K^-1 P2[:,3]] * R0_rect * Tr_velo_to_cam.
+/// The format has no image size: pass it, or leave it 0 and set it from the images later
+/// (StereoCalibration::validate() requires one).
+geometry::StereoCalibration readKittiCalibration(const std::string& path, int width = 0, int height = 0);
+
+/// KITTI raw format: calib_cam_to_cam.txt (P_rect_02, P_rect_03, R_rect_00, S_rect_02) and
+/// calib_velo_to_cam.txt (R, T); cameras 02/03 are the color pair. The size is S_rect_02.
+geometry::StereoCalibration readKittiRawCalibration(const std::string& camToCamPath,
+                                                    const std::string& veloToCamPath);
+
+/// Our YAML (cv::FileStorage): width, height, K (3x3), baseline, T_cam_lidar (4x4).
+geometry::StereoCalibration readCalibrationYaml(const std::string& path);
+/// Writes the YAML form through a temporary file renamed when complete.
+void writeCalibrationYaml(const std::string& path, const geometry::StereoCalibration& calibration);
+
+/// Picks the reader from the path: *.yaml / *.yml -> YAML; a directory, or a file named
+/// calib_cam_to_cam.txt, -> KITTI raw (calib_velo_to_cam.txt beside it); any other file ->
+/// KITTI object format (with the given size, 0 = unknown).
+geometry::StereoCalibration readCalibration(const std::string& path, int width = 0, int height = 0);
+
+}  // namespace io
+}  // namespace lidar_sgm

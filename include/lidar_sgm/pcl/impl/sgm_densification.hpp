@@ -1,0 +1,172 @@
+#pragma once
+/// @file impl/sgm_densification.hpp  Template body of SGMDensification. Include it for point
+/// types other than the explicitly instantiated ones (or define PCL_NO_PRECOMPILE).
+
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include <pcl/console/print.h>
+#include <pcl/type_traits.h>
+
+#include "lidar_sgm/pcl/sgm_densification.hpp"
+
+namespace lidar_sgm {
+
+namespace detail {
+
+/// Gray from RGB with OpenCV's fixed-point BT.601 weights (cvtColor BGR2GRAY: 0.299, 0.587,
+/// 0.114 scaled by 2^14), so a pair given as PCL images matches the same pair read by OpenCV.
+inline std::uint8_t grayFromRgb(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+  return static_cast<std::uint8_t>((r * 4899 + g * 9617 + b * 1868 + (1 << 13)) >> 14);
+}
+
+inline Image<std::uint8_t> grayImage(const pcl::PointCloud<pcl::RGB>& image) {
+  Image<std::uint8_t> gray(static_cast<int>(image.width), static_cast<int>(image.height));
+  for (int y = 0; y < gray.height(); ++y) {
+    for (int x = 0; x < gray.width(); ++x) {
+      const pcl::RGB& p = image.at(x, y);
+      gray(x, y) = grayFromRgb(p.r, p.g, p.b);
+    }
+  }
+  return gray;
+}
+
+inline Image<Rgb8> colorImage(const pcl::PointCloud<pcl::RGB>& image) {
+  Image<Rgb8> color(static_cast<int>(image.width), static_cast<int>(image.height));
+  for (int y = 0; y < color.height(); ++y) {
+    for (int x = 0; x < color.width(); ++x) {
+      const pcl::RGB& p = image.at(x, y);
+      color(x, y) = Rgb8{p.r, p.g, p.b};
+    }
+  }
+  return color;
+}
+
+inline bool isOrganizedImage(const pcl::PointCloud<pcl::RGB>& image) {
+  return image.height > 1 && image.width > 1 && image.size() == std::size_t{image.width} * image.height;
+}
+
+}  // namespace detail
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::setStereoPair(const ImageCloud& left, const ImageCloud& right) {
+  // Invalid images are remembered as an error for filter() (PCL setters do not throw).
+  if (!detail::isOrganizedImage(left) || !detail::isOrganizedImage(right)) {
+    pendingError_ = "setStereoPair: the images must be organized clouds (width x height, height > 1)";
+    return;
+  }
+  const Image<std::uint8_t> l = detail::grayImage(left);
+  const Image<std::uint8_t> r = detail::grayImage(right);
+  try {
+    pipeline_.setStereoPair(l.view(), r.view());
+    pendingError_.clear();
+  } catch (const std::exception& e) {
+    pendingError_ = e.what();
+    return;
+  }
+  if (!explicitColor_) {
+    const Image<Rgb8> color = detail::colorImage(left);
+    pipeline_.setColorImage(color.view());
+  }
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::setStereoPair(ImageView<const std::uint8_t> left,
+                                                         ImageView<const std::uint8_t> right) {
+  try {
+    pipeline_.setStereoPair(left, right);
+    pendingError_.clear();
+  } catch (const std::exception& e) {
+    pendingError_ = e.what();
+  }
+  // A gray pair colors through the pipeline's gray fallback unless a color image is set.
+  if (!explicitColor_) pipeline_.setColorImage(ImageView<const Rgb8>());
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::clearStereoPair() {
+  pipeline_.setStereoPair(ImageView<const std::uint8_t>(), ImageView<const std::uint8_t>());
+  if (!explicitColor_) pipeline_.setColorImage(ImageView<const Rgb8>());
+  pendingError_.clear();
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::setColorImage(const ImageCloud& image) {
+  if (!detail::isOrganizedImage(image)) {
+    pendingError_ = "setColorImage: the image must be an organized cloud (width x height, height > 1)";
+    return;
+  }
+  const Image<Rgb8> color = detail::colorImage(image);
+  pipeline_.setColorImage(color.view());
+  explicitColor_ = true;
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::fail(PointCloudOut& output, const std::string& message) {
+  lastError_ = message;
+  PCL_ERROR("[lidar_sgm::%s::filter] %s\n", getClassName().c_str(), message.c_str());
+  output.clear();
+  output.width = 0;
+  output.height = 0;
+  output.is_dense = true;
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
+  lastError_.clear();
+  if (!pendingError_.empty()) {
+    fail(output, pendingError_);
+    return;
+  }
+  if (!input_) {
+    fail(output, "no input cloud: call setInputCloud() first");
+    return;
+  }
+  if (!initCompute()) {
+    fail(output, "the input cloud or its indices are invalid");
+    return;
+  }
+  std::vector<Eigen::Vector3f> points;
+  points.reserve(indices_->size());
+  for (const auto index : *indices_) {
+    const PointInT& p = (*input_)[index];
+    points.emplace_back(p.x, p.y, p.z);
+  }
+  const pcl::PCLHeader header = input_->header;  // output may alias nothing, but copy first anyway
+  geometry::DenseCloud dense;
+  try {
+    dense = pipeline_.run(points);
+  } catch (const std::exception& e) {
+    deinitCompute();
+    fail(output, e.what());
+    return;
+  }
+
+  output.header = header;
+  if (pipeline_.reprojectionOptions().frame == geometry::OutputFrame::Camera) output.header.frame_id = cameraFrameId_;
+  output.resize(dense.size());
+  output.width = static_cast<std::uint32_t>(dense.width);
+  output.height = static_cast<std::uint32_t>(dense.height);
+  output.is_dense = dense.isDense;
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    PointOutT& q = output[i];
+    q.x = dense.points[i].x();
+    q.y = dense.points[i].y();
+    q.z = dense.points[i].z();
+    if constexpr (pcl::traits::has_color_v<PointOutT>) {
+      Rgb8 c;
+      if (pipeline_.colorAt(dense.pixels[i].x, dense.pixels[i].y, c)) {
+        q.r = c.r;
+        q.g = c.g;
+        q.b = c.b;
+      }
+    }
+  }
+  deinitCompute();
+}
+
+}  // namespace lidar_sgm
+

@@ -1,0 +1,64 @@
+#include "lidar_sgm/geometry/reprojection.hpp"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace lidar_sgm {
+namespace geometry {
+
+DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCalibration& calibration,
+                     const ReprojectionOptions& options) {
+  calibration.validate();
+  if (disparity16.width != calibration.width || disparity16.height != calibration.height) {
+    throw std::invalid_argument("reproject: the disparity image is " + std::to_string(disparity16.width) + "x" +
+                                std::to_string(disparity16.height) + " but the calibration is " +
+                                std::to_string(calibration.width) + "x" + std::to_string(calibration.height));
+  }
+  if (options.stride < 1) throw std::invalid_argument("reproject: stride must be >= 1");
+  if (!(options.maxDepth > 0.0)) throw std::invalid_argument("reproject: maxDepth must be positive [m]");
+
+  // One transform for the whole image: camera -> output frame.
+  const Eigen::Isometry3d T_out_cam =
+      options.frame == OutputFrame::Lidar ? calibration.T_lidar_cam() : Eigen::Isometry3d::Identity();
+  const double fb = calibration.focalBaseline();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+
+  DenseCloud cloud;
+  const int columns = (calibration.width + options.stride - 1) / options.stride;
+  const int rows = (calibration.height + options.stride - 1) / options.stride;
+  if (options.keepOrganized) {
+    cloud.points.reserve(static_cast<std::size_t>(columns) * rows);
+    cloud.pixels.reserve(cloud.points.capacity());
+  }
+  for (int y = 0; y < calibration.height; y += options.stride) {
+    for (int x = 0; x < calibration.width; x += options.stride) {
+      const int d16 = disparity16(x, y);
+      // Eq. 3 backwards: z = f*b/d; invalid, non-positive and too-far disparities give no point.
+      const double z = d16 > 0 ? fb * kDisparityScale / d16 : std::numeric_limits<double>::infinity();
+      if (d16 == kInvalidDisparity || d16 <= 0 || z > options.maxDepth) {
+        if (options.keepOrganized) {
+          cloud.points.emplace_back(nan, nan, nan);
+          cloud.pixels.push_back({x, y});
+          cloud.isDense = false;
+        }
+        continue;
+      }
+      const Eigen::Vector3d camera((x - calibration.cx()) * z / calibration.fx(),
+                                   (y - calibration.cy()) * z / calibration.fy(), z);
+      cloud.points.push_back((T_out_cam * camera).cast<float>());
+      cloud.pixels.push_back({x, y});
+    }
+  }
+  if (options.keepOrganized) {
+    cloud.width = columns;
+    cloud.height = rows;
+  } else {
+    cloud.width = static_cast<int>(cloud.points.size());
+    cloud.height = 1;
+  }
+  return cloud;
+}
+
+}  // namespace geometry
+}  // namespace lidar_sgm

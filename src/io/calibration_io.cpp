@@ -1,0 +1,385 @@
+#include "lidar_sgm/io/calibration_io.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "atomic_file.hpp"
+
+namespace lidar_sgm {
+namespace io {
+namespace fs = std::filesystem;
+namespace {
+
+using geometry::StereoCalibration;
+using Matrix34 = Eigen::Matrix<double, 3, 4>;
+
+/// One "KEY: v1 v2 ..." line parsed into numbers; it remembers where it came from so that every
+/// later complaint about its content can name the file, the line and the key.
+struct Field {
+  std::string file;
+  std::string key;
+  int line = 0;
+  std::vector<double> values;
+
+  std::string where() const { return file + ":" + std::to_string(line) + ": key '" + key + "'"; }
+  [[noreturn]] void fail(const std::string& problem) const { throw std::runtime_error(where() + ": " + problem); }
+};
+
+std::string trim(const std::string& text) {
+  const auto notSpace = [](unsigned char c) { return std::isspace(c) == 0; };
+  const auto first = std::find_if(text.begin(), text.end(), notSpace);
+  const auto last = std::find_if(text.rbegin(), text.rend(), notSpace).base();
+  return first < last ? std::string(first, last) : std::string();
+}
+
+std::string numberText(double value) {
+  std::ostringstream s;
+  s.precision(10);
+  s << value;
+  return s.str();
+}
+
+/// The whole token must be a finite number: strtod alone would accept "7.2abc" as 7.2, and
+/// "nan"/"inf" would poison every later computation silently.
+double parseNumber(const Field& field, const std::string& token) {
+  const char* begin = token.c_str();
+  char* end = nullptr;
+  const double value = std::strtod(begin, &end);
+  if (end == begin || *end != '\0') field.fail("malformed number '" + token + "'");
+  if (!std::isfinite(value)) field.fail("non-finite number '" + token + "'");
+  return value;
+}
+
+[[noreturn]] void cannotRead(const std::string& path, const std::string& reason) {
+  throw std::runtime_error("cannot read calibration '" + path + "': " + reason);
+}
+
+void requireRegularFile(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) cannotRead(path, "no such file");
+}
+
+/// A KITTI calibration text file: "KEY: values" lines. Values are kept as text and only the
+/// keys asked for are parsed, so unknown keys with non-numeric values (calib_time) do no harm.
+class KittiTextFile {
+ public:
+  explicit KittiTextFile(const std::string& path) : path_(path) {
+    requireRegularFile(path);
+    std::ifstream in(path);
+    if (!in) cannotRead(path, "cannot open the file");
+    std::string text;
+    for (int number = 1; std::getline(in, text); ++number) addLine(number, text);
+    if (in.bad()) cannotRead(path, "read error");
+  }
+
+  /// The numbers of `key`, exactly `count` of them.
+  Field numbers(const std::string& key, std::size_t count) const {
+    const auto found = lines_.find(key);
+    if (found == lines_.end()) throw std::runtime_error(path_ + ": missing key '" + key + "'");
+    const std::vector<Line>& occurrences = found->second;
+    Field field{path_, key, occurrences.front().number, {}};
+    // Two values for one key: which one the author meant is a guess we do not make.
+    if (occurrences.size() > 1) field.fail("appears again on line " + std::to_string(occurrences[1].number));
+    std::istringstream tokens(occurrences.front().text);
+    for (std::string token; tokens >> token;) field.values.push_back(parseNumber(field, token));
+    if (field.values.size() != count) {
+      field.fail("expected " + std::to_string(count) + " numbers, got " + std::to_string(field.values.size()));
+    }
+    return field;
+  }
+
+ private:
+  struct Line {
+    int number;
+    std::string text;
+  };
+
+  void addLine(int number, std::string text) {
+    if (!text.empty() && text.back() == '\r') text.pop_back();  // files saved with CRLF
+    if (trim(text).empty()) return;
+    const std::size_t colon = text.find(':');
+    if (colon == std::string::npos) {
+      throw std::runtime_error(path_ + ":" + std::to_string(number) + ": expected 'KEY: values', got '" + text + "'");
+    }
+    lines_[trim(text.substr(0, colon))].push_back({number, text.substr(colon + 1)});
+  }
+
+  std::string path_;
+  std::map<std::string, std::vector<Line>> lines_;
+};
+
+Matrix34 rowMajor3x4(const Field& field) {
+  Matrix34 m;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) m(r, c) = field.values[static_cast<std::size_t>(4 * r + c)];
+  }
+  return m;
+}
+
+Eigen::Matrix3d rowMajor3x3(const Field& field) {
+  Eigen::Matrix3d m;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m(r, c) = field.values[static_cast<std::size_t>(3 * r + c)];
+  }
+  return m;
+}
+
+/// Checked per key (not only on the composed T_cam_lidar) so the message names the culprit line.
+void requireRotation(const Field& field, const Eigen::Matrix3d& R) {
+  const double orthoError = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  const double det = R.determinant();
+  if (orthoError > StereoCalibration::kRotationTolerance ||
+      std::abs(det - 1.0) > StereoCalibration::kRotationTolerance) {
+    field.fail("not a rotation (max |R^T R - I| = " + numberText(orthoError) + ", det = " + numberText(det) + ")");
+  }
+}
+
+/// A rectified projection's left 3x3 must be [fx 0 cx; 0 fy cy; 0 0 1]: K is built from fx, fy,
+/// cx, cy alone, so anything else in it would be dropped without a word.
+void requireRectifiedIntrinsics(const Field& field, const Matrix34& P) {
+  if (P(0, 1) != 0.0 || P(1, 0) != 0.0 || P(2, 0) != 0.0 || P(2, 1) != 0.0 || P(2, 2) != 1.0) {
+    field.fail("left 3x3 must be [fx 0 cx; 0 fy cy; 0 0 1] (rectified, no skew)");
+  }
+}
+
+/// Rigid transform from a rotation and a translation; last row exactly (0 0 0 1).
+Eigen::Matrix4d rigid(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = R;
+  T.topRightCorner<3, 1>() = t;
+  return T;
+}
+
+/// The KITTI composition shared by the object and raw formats (see the header):
+/// K = left 3x3 of P2, baseline = (P2[0,3] - P3[0,3]) / fx,
+/// T_cam_lidar = [I | K^-1 P2[:,3]] * R0_rect * Tr_velo_to_cam. The [I | t2] term moves from the
+/// rectified reference camera 0 to camera 2, so P2 * R0 * Tr * X == K * (T_cam_lidar * X).
+StereoCalibration composeKitti(const Field& p2Field, const Field& p3Field, const Field& r0Field,
+                               const Eigen::Matrix4d& veloToCam) {
+  const Matrix34 P2 = rowMajor3x4(p2Field);
+  const Matrix34 P3 = rowMajor3x4(p3Field);
+  requireRectifiedIntrinsics(p2Field, P2);
+  requireRectifiedIntrinsics(p3Field, P3);
+  // A rectified pair shares its intrinsics; KITTI prints them identically.
+  if ((P3.leftCols<3>() - P2.leftCols<3>()).cwiseAbs().maxCoeff() > 1e-6 * std::abs(P2(0, 0))) {
+    p3Field.fail("left 3x3 differs from " + p2Field.key + "'s: the pair is not rectified");
+  }
+  const Eigen::Matrix3d R0 = rowMajor3x3(r0Field);
+  requireRotation(r0Field, R0);
+
+  StereoCalibration calibration;
+  calibration.K << P2(0, 0), 0.0, P2(0, 2), 0.0, P2(1, 1), P2(1, 2), 0.0, 0.0, 1.0;
+  if (!(P2(0, 0) > 0.0)) p2Field.fail("focal length fx must be positive, got " + numberText(P2(0, 0)));
+  calibration.baseline = (P2(0, 3) - P3(0, 3)) / P2(0, 0);
+  if (!(calibration.baseline > 0.0)) {
+    p3Field.fail("baseline (" + p2Field.key + "[0,3] - " + p3Field.key + "[0,3]) / fx must be positive [m], got " +
+                 numberText(calibration.baseline));
+  }
+  const Eigen::Vector3d cameraOffset = calibration.K.triangularView<Eigen::Upper>().solve(P2.col(3));
+  calibration.T_cam_lidar.matrix() =
+      rigid(Eigen::Matrix3d::Identity(), cameraOffset) * rigid(R0, Eigen::Vector3d::Zero()) * veloToCam;
+  return calibration;
+}
+
+/// validate() with the file named; with the size unknown (0x0) everything but the size is
+/// still checked, on a copy given a placeholder size.
+void validateFromFile(const StereoCalibration& calibration, const std::string& source) {
+  StereoCalibration checked = calibration;
+  if (checked.width == 0 && checked.height == 0) checked.width = checked.height = 1;
+  try {
+    checked.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error("invalid calibration " + source + ": " + e.what());
+  }
+}
+
+/// S_rect_02 is printed as floats (1.242000e+03); a size must still be a positive whole number.
+int imageSide(const Field& field, double value) {
+  if (!(value >= 1.0) || value > static_cast<double>(INT_MAX) || value != std::floor(value)) {
+    field.fail("image size must be positive whole pixels, got " + numberText(value));
+  }
+  return static_cast<int>(value);
+}
+
+// --- YAML --------------------------------------------------------------------------------
+
+cv::FileNode requireNode(const cv::FileStorage& storage, const std::string& path, const std::string& key) {
+  const cv::FileNode node = storage[key];
+  if (node.empty() || node.isNone()) throw std::runtime_error(path + ": missing key '" + key + "'");
+  return node;
+}
+
+int readYamlInt(const cv::FileStorage& storage, const std::string& path, const std::string& key) {
+  const cv::FileNode node = requireNode(storage, path, key);
+  if (!node.isInt()) throw std::runtime_error(path + ": key '" + key + "': expected an integer");
+  return static_cast<int>(node);
+}
+
+double readYamlReal(const cv::FileStorage& storage, const std::string& path, const std::string& key) {
+  const cv::FileNode node = requireNode(storage, path, key);
+  if (!node.isReal() && !node.isInt()) throw std::runtime_error(path + ": key '" + key + "': expected a number");
+  return static_cast<double>(node);
+}
+
+template <int Rows, int Cols>
+Eigen::Matrix<double, Rows, Cols> readYamlMatrix(const cv::FileStorage& storage, const std::string& path,
+                                                 const std::string& key) {
+  const cv::FileNode node = requireNode(storage, path, key);
+  cv::Mat m;
+  if (node.isMap()) node >> m;  // an opencv-matrix is a map (rows, cols, dt, data)
+  if (m.empty() || m.rows != Rows || m.cols != Cols || m.channels() != 1) {
+    throw std::runtime_error(path + ": key '" + key + "': expected a " + std::to_string(Rows) + "x" +
+                             std::to_string(Cols) + " matrix");
+  }
+  m.convertTo(m, CV_64F);
+  Eigen::Matrix<double, Rows, Cols> out;
+  for (int r = 0; r < Rows; ++r) {
+    for (int c = 0; c < Cols; ++c) out(r, c) = m.at<double>(r, c);
+  }
+  return out;
+}
+
+template <typename Derived>
+cv::Mat toCvMat(const Eigen::MatrixBase<Derived>& m) {
+  cv::Mat out(static_cast<int>(m.rows()), static_cast<int>(m.cols()), CV_64F);
+  for (int r = 0; r < out.rows; ++r) {
+    for (int c = 0; c < out.cols; ++c) out.at<double>(r, c) = m(r, c);
+  }
+  return out;
+}
+
+void writeYamlContent(cv::FileStorage& storage, const StereoCalibration& c) {
+  storage.writeComment("lidar_sgm stereo calibration: metres and pixels; rectified left camera K,");
+  storage.writeComment("baseline between the rectified cameras, p_cam = T_cam_lidar * p_lidar.");
+  storage << "width" << c.width << "height" << c.height;
+  storage << "K" << toCvMat(c.K);
+  storage << "baseline" << c.baseline;
+  storage << "T_cam_lidar" << toCvMat(c.T_cam_lidar.matrix());
+}
+
+bool hasYamlExtension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".yaml" || extension == ".yml";
+}
+
+}  // namespace
+
+StereoCalibration readKittiCalibration(const std::string& path, int width, int height) {
+  const KittiTextFile file(path);
+  const Field p2 = file.numbers("P2", 12);
+  const Field p3 = file.numbers("P3", 12);
+  const Field r0 = file.numbers("R0_rect", 9);
+  const Field tr = file.numbers("Tr_velo_to_cam", 12);
+  const Matrix34 veloToCam = rowMajor3x4(tr);
+  requireRotation(tr, veloToCam.leftCols<3>());
+
+  StereoCalibration calibration = composeKitti(p2, p3, r0, rigid(veloToCam.leftCols<3>(), veloToCam.col(3)));
+  calibration.width = width;
+  calibration.height = height;
+  validateFromFile(calibration, "'" + path + "'");
+  return calibration;
+}
+
+StereoCalibration readKittiRawCalibration(const std::string& camToCamPath, const std::string& veloToCamPath) {
+  const KittiTextFile camToCam(camToCamPath);
+  const KittiTextFile veloToCamFile(veloToCamPath);
+  const Field p2 = camToCam.numbers("P_rect_02", 12);
+  const Field p3 = camToCam.numbers("P_rect_03", 12);
+  const Field r0 = camToCam.numbers("R_rect_00", 9);  // rectifies camera 0, the reference of P_rect_0x
+  const Field size = camToCam.numbers("S_rect_02", 2);
+  const Field rotation = veloToCamFile.numbers("R", 9);
+  const Field translation = veloToCamFile.numbers("T", 3);
+  const Eigen::Matrix3d R = rowMajor3x3(rotation);
+  requireRotation(rotation, R);
+  const Eigen::Vector3d t(translation.values[0], translation.values[1], translation.values[2]);
+
+  StereoCalibration calibration = composeKitti(p2, p3, r0, rigid(R, t));
+  calibration.width = imageSide(size, size.values[0]);
+  calibration.height = imageSide(size, size.values[1]);
+  validateFromFile(calibration, "from '" + camToCamPath + "' and '" + veloToCamPath + "'");
+  return calibration;
+}
+
+StereoCalibration readCalibrationYaml(const std::string& path) {
+  requireRegularFile(path);
+  cv::FileStorage storage;
+  try {
+    if (!storage.open(path, cv::FileStorage::READ)) cannotRead(path, "not a readable YAML file");
+  } catch (const cv::Exception& e) {
+    // The parser's message carries the line of the syntax error.
+    cannotRead(path, "YAML syntax error: " + trim(e.what()));
+  }
+  StereoCalibration calibration;
+  try {
+    calibration.width = readYamlInt(storage, path, "width");
+    calibration.height = readYamlInt(storage, path, "height");
+    calibration.K = readYamlMatrix<3, 3>(storage, path, "K");
+    calibration.baseline = readYamlReal(storage, path, "baseline");
+    calibration.T_cam_lidar.matrix() = readYamlMatrix<4, 4>(storage, path, "T_cam_lidar");
+  } catch (const cv::Exception& e) {
+    cannotRead(path, e.what());
+  }
+  validateFromFile(calibration, "'" + path + "'");
+  return calibration;
+}
+
+void writeCalibrationYaml(const std::string& path, const StereoCalibration& calibration) {
+  // Refuse to write what readCalibrationYaml would refuse to read back.
+  try {
+    calibration.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("cannot write calibration '" + path + "': " + e.what());
+  }
+  // Checked here so a missing directory gets a plain message instead of OpenCV's error log.
+  const fs::path directory = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!directory.empty() && !fs::is_directory(directory, ec)) {
+    throw std::runtime_error("cannot write '" + path + "': no such directory '" + directory.string() + "'");
+  }
+  const std::string temporary = detail::temporaryPathFor(path);  // keeps .yaml: FileStorage picks YAML
+  try {
+    cv::FileStorage storage;
+    if (!storage.open(temporary, cv::FileStorage::WRITE)) {
+      throw std::runtime_error("cannot write '" + path + "': the directory is not writable");
+    }
+    writeYamlContent(storage, calibration);
+    storage.release();
+  } catch (const cv::Exception& e) {
+    detail::discardTemporary(temporary);
+    throw std::runtime_error("cannot write '" + path + "': " + trim(e.what()));
+  } catch (...) {
+    detail::discardTemporary(temporary);  // never leave a half-written hidden file behind
+    throw;
+  }
+  detail::commitTemporary(temporary, path);
+}
+
+StereoCalibration readCalibration(const std::string& path, int width, int height) {
+  const fs::path p(path);
+  if (hasYamlExtension(p)) return readCalibrationYaml(path);
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) {
+    return readKittiRawCalibration((p / "calib_cam_to_cam.txt").string(), (p / "calib_velo_to_cam.txt").string());
+  }
+  if (p.filename() == "calib_cam_to_cam.txt") {
+    return readKittiRawCalibration(path, (p.parent_path() / "calib_velo_to_cam.txt").string());
+  }
+  return readKittiCalibration(path, width, height);
+}
+
+}  // namespace io
+}  // namespace lidar_sgm

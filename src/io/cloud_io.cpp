@@ -1,0 +1,406 @@
+#include "lidar_sgm/io/cloud_io.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
+#include "atomic_file.hpp"
+
+namespace lidar_sgm {
+namespace io {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr std::uint64_t kKittiPointBytes = 4 * sizeof(float);  // x, y, z, reflectance
+
+[[noreturn]] void failRead(const std::string& path, const std::string& problem) {
+  throw std::runtime_error("cannot read cloud '" + path + "': " + problem);
+}
+
+[[noreturn]] void failWrite(const std::string& path, const std::string& problem) {
+  throw std::runtime_error("cannot write '" + path + "': " + problem);
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string extension = fs::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+void requireRegularFile(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) failRead(path, "no such file");
+  if (!fs::is_regular_file(path, ec)) failRead(path, "not a regular file");
+}
+
+bool finiteXyz(const pcl::PointXYZI& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+// is_dense is a promise to downstream code (it may skip NaN checks), so it is computed from the
+// points and never copied from a file header.
+void setDenseness(pcl::PointCloud<pcl::PointXYZI>& cloud) {
+  cloud.is_dense = std::all_of(cloud.points.begin(), cloud.points.end(), finiteXyz);
+}
+
+// KITTI files are little-endian whatever the host; assembling the bytes keeps this portable.
+float littleEndianFloat(const unsigned char* bytes) {
+  const std::uint32_t bits = static_cast<std::uint32_t>(bytes[0]) | (static_cast<std::uint32_t>(bytes[1]) << 8) |
+                             (static_cast<std::uint32_t>(bytes[2]) << 16) |
+                             (static_cast<std::uint32_t>(bytes[3]) << 24);
+  float value = 0.0f;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+std::vector<unsigned char> readAllBytes(const std::string& path, std::uint64_t size) {
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) failRead(path, "cannot open the file");
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  const auto got = static_cast<std::uint64_t>(in.gcount());
+  if (got != size) {
+    failRead(path, "read error after " + std::to_string(got) + " of " + std::to_string(size) + " bytes");
+  }
+  return bytes;
+}
+
+// ---- PCLPointCloud2 -> PointXYZI ------------------------------------------------------------
+
+const char* typeName(std::uint8_t datatype) {
+  switch (datatype) {
+    case pcl::PCLPointField::INT8: return "int8";
+    case pcl::PCLPointField::UINT8: return "uint8";
+    case pcl::PCLPointField::INT16: return "int16";
+    case pcl::PCLPointField::UINT16: return "uint16";
+    case pcl::PCLPointField::INT32: return "int32";
+    case pcl::PCLPointField::UINT32: return "uint32";
+    case pcl::PCLPointField::INT64: return "int64";
+    case pcl::PCLPointField::UINT64: return "uint64";
+    case pcl::PCLPointField::FLOAT32: return "float32";
+    case pcl::PCLPointField::FLOAT64: return "float64";
+    case pcl::PCLPointField::BOOL: return "bool";
+    default: return "unknown";
+  }
+}
+
+std::size_t typeSize(std::uint8_t datatype) {
+  switch (datatype) {
+    case pcl::PCLPointField::INT8:
+    case pcl::PCLPointField::UINT8:
+    case pcl::PCLPointField::BOOL: return 1;
+    case pcl::PCLPointField::INT16:
+    case pcl::PCLPointField::UINT16: return 2;
+    case pcl::PCLPointField::INT32:
+    case pcl::PCLPointField::UINT32:
+    case pcl::PCLPointField::FLOAT32: return 4;
+    case pcl::PCLPointField::INT64:
+    case pcl::PCLPointField::UINT64:
+    case pcl::PCLPointField::FLOAT64: return 8;
+    default: return 0;
+  }
+}
+
+template <typename T>
+float loadAs(const std::uint8_t* bytes) {
+  T value;
+  std::memcpy(&value, bytes, sizeof value);  // fields need not be aligned
+  return static_cast<float>(value);
+}
+
+using Loader = float (*)(const std::uint8_t*);
+
+Loader loaderFor(std::uint8_t datatype) {
+  switch (datatype) {
+    case pcl::PCLPointField::INT8: return &loadAs<std::int8_t>;
+    case pcl::PCLPointField::UINT8: return &loadAs<std::uint8_t>;
+    case pcl::PCLPointField::BOOL: return &loadAs<std::uint8_t>;  // one byte, 0 or 1
+    case pcl::PCLPointField::INT16: return &loadAs<std::int16_t>;
+    case pcl::PCLPointField::UINT16: return &loadAs<std::uint16_t>;
+    case pcl::PCLPointField::INT32: return &loadAs<std::int32_t>;
+    case pcl::PCLPointField::UINT32: return &loadAs<std::uint32_t>;
+    case pcl::PCLPointField::INT64: return &loadAs<std::int64_t>;
+    case pcl::PCLPointField::UINT64: return &loadAs<std::uint64_t>;
+    case pcl::PCLPointField::FLOAT32: return &loadAs<float>;
+    case pcl::PCLPointField::FLOAT64: return &loadAs<double>;
+    default: return nullptr;
+  }
+}
+
+/// Where one field lives in each point record, and how to turn it into a float.
+struct FieldReader {
+  std::size_t offset = 0;
+  Loader load = nullptr;
+
+  float operator()(const std::uint8_t* point) const { return load(point + offset); }
+};
+
+const pcl::PCLPointField* findField(const pcl::PCLPointCloud2& blob, const std::string& name) {
+  for (const pcl::PCLPointField& field : blob.fields) {
+    if (field.name == name) return &field;
+  }
+  return nullptr;
+}
+
+std::string fieldList(const pcl::PCLPointCloud2& blob) {
+  std::string names;
+  for (const pcl::PCLPointField& field : blob.fields) names += (names.empty() ? "" : " ") + field.name;
+  return names.empty() ? "none" : names;
+}
+
+// A header is not trusted: a field that does not fit in the point record would read the next
+// point's bytes (or past the end of the data).
+FieldReader readerFor(const std::string& path, const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& field) {
+  const Loader load = loaderFor(field.datatype);
+  if (load == nullptr) {
+    failRead(path, "field '" + field.name + "' has an unsupported type (" + std::to_string(field.datatype) + ")");
+  }
+  const std::uint64_t end = static_cast<std::uint64_t>(field.offset) +
+                            static_cast<std::uint64_t>(typeSize(field.datatype)) * std::max<std::uint64_t>(field.count, 1);
+  if (end > blob.point_step) {
+    failRead(path, "field '" + field.name + "' lies outside the " + std::to_string(blob.point_step) +
+                       "-byte point record");
+  }
+  return FieldReader{field.offset, load};
+}
+
+FieldReader coordinateReader(const std::string& path, const pcl::PCLPointCloud2& blob, const std::string& name) {
+  const pcl::PCLPointField* field = findField(blob, name);
+  if (field == nullptr) failRead(path, "no '" + name + "' field (fields: " + fieldList(blob) + ")");
+  if (field->datatype != pcl::PCLPointField::FLOAT32 && field->datatype != pcl::PCLPointField::FLOAT64) {
+    failRead(path, "field '" + name + "' has type " + typeName(field->datatype) +
+                       "; x, y, z must be float32 or float64");
+  }
+  return readerFor(path, blob, *field);
+}
+
+/// The intensity under its usual names (PCL "intensity", KITTI/PLY "reflectance", "i"); a
+/// reader with no loader when the file has none.
+FieldReader intensityReader(const std::string& path, const pcl::PCLPointCloud2& blob) {
+  for (const char* name : {"intensity", "reflectance", "i"}) {
+    if (const pcl::PCLPointField* field = findField(blob, name)) return readerFor(path, blob, *field);
+  }
+  return FieldReader{};
+}
+
+// Readers that hit a short body may still hand back a blob sized from the header; a cloud is
+// only converted when every declared point is really there.
+std::uint64_t checkedRowStep(const std::string& path, const pcl::PCLPointCloud2& blob) {
+  const std::uint64_t packedRow = static_cast<std::uint64_t>(blob.width) * blob.point_step;
+  const std::uint64_t rowStep = blob.row_step != 0 ? blob.row_step : packedRow;
+  if (blob.width == 0 || blob.height == 0) return rowStep;
+  if (blob.point_step == 0) failRead(path, "the header declares points of 0 bytes");
+  if (rowStep < packedRow) failRead(path, "the row step is smaller than width x point step");
+  const std::uint64_t needed = rowStep * (blob.height - 1) + packedRow;
+  if (blob.data.size() < needed) {
+    failRead(path, "the data holds " + std::to_string(blob.data.size()) + " bytes but the header declares " +
+                       std::to_string(blob.width) + " x " + std::to_string(blob.height) + " points of " +
+                       std::to_string(blob.point_step) + " bytes: truncated?");
+  }
+  return rowStep;
+}
+
+pcl::PointCloud<pcl::PointXYZI> toXyzi(const std::string& path, const pcl::PCLPointCloud2& blob) {
+  const std::uint64_t rowStep = checkedRowStep(path, blob);
+  const FieldReader x = coordinateReader(path, blob, "x");
+  const FieldReader y = coordinateReader(path, blob, "y");
+  const FieldReader z = coordinateReader(path, blob, "z");
+  const FieldReader intensity = intensityReader(path, blob);
+
+  pcl::PointCloud<pcl::PointXYZI> cloud;
+  cloud.resize(static_cast<std::size_t>(blob.width) * blob.height);
+  cloud.width = blob.width;  // resize() leaves the cloud unorganized; keep the file's layout
+  cloud.height = blob.height;
+  cloud.header = blob.header;
+  std::size_t i = 0;
+  for (std::uint64_t row = 0; row < blob.height; ++row) {
+    const std::uint8_t* record = blob.data.data() + row * rowStep;
+    for (std::uint64_t col = 0; col < blob.width; ++col, ++i, record += blob.point_step) {
+      pcl::PointXYZI& p = cloud.points[i];
+      p.x = x(record);
+      p.y = y(record);
+      p.z = z(record);
+      p.intensity = intensity.load != nullptr ? intensity(record) : 0.0f;
+    }
+  }
+  setDenseness(cloud);
+  return cloud;
+}
+
+// ---- PCL readers --------------------------------------------------------------------------
+
+template <typename Call>
+int callPclReader(const std::string& path, Call call) {
+  try {
+    return call();
+  } catch (const std::exception& e) {
+    failRead(path, std::string("PCL: ") + e.what());
+  }
+}
+
+// PCL's ASCII reader skips a line with the wrong number of values (a file cut inside its last
+// line, say) with a warning, leaving a zero point, and still reports success. So each line of an
+// ASCII body is counted here.
+void checkAsciiBody(const std::string& path, const pcl::PCLPointCloud2& blob, unsigned int dataStart) {
+  std::size_t valuesPerPoint = 0;
+  for (const pcl::PCLPointField& field : blob.fields) valuesPerPoint += std::max<std::size_t>(field.count, 1);
+  const std::uint64_t points = static_cast<std::uint64_t>(blob.width) * blob.height;
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(dataStart));
+  std::string line;
+  std::uint64_t point = 0;
+  while (point < points && std::getline(in, line)) {
+    std::istringstream values(line);
+    std::size_t count = 0;
+    for (std::string value; values >> value;) ++count;
+    if (count == 0) continue;  // PCL skips blank lines too
+    ++point;
+    if (count != valuesPerPoint) {
+      failRead(path, "ASCII point " + std::to_string(point) + " has " + std::to_string(count) + " values, expected " +
+                         std::to_string(valuesPerPoint) + ": truncated or malformed?");
+    }
+  }
+  if (point < points) {
+    failRead(path, "the header declares " + std::to_string(points) + " points but the data holds " +
+                       std::to_string(point) + ": truncated?");
+  }
+}
+
+void readPcdBlob(const std::string& path, pcl::PCLPointCloud2& blob, Eigen::Vector4f& origin,
+                 Eigen::Quaternionf& orientation) {
+  pcl::PCDReader reader;
+  int version = 0;
+  int dataType = 0;
+  unsigned int dataStart = 0;
+  const int headerStatus = callPclReader(
+      path, [&] { return reader.readHeader(path, blob, origin, orientation, version, dataType, dataStart); });
+  if (headerStatus < 0) failRead(path, "not a valid PCD file (its header cannot be parsed)");
+  // PCL 1.13 accepts an empty or non-PCD file as a header without fields, and its read() then
+  // crashes (PCL issue #5854); such a file is refused here, before read().
+  if (blob.fields.empty()) failRead(path, "not a PCD file (no FIELDS in its header)");
+  const int status = callPclReader(path, [&] { return reader.read(path, blob, origin, orientation, version); });
+  if (status < 0) failRead(path, "the PCD data cannot be read: truncated or corrupted?");
+  if (dataType == 0) checkAsciiBody(path, blob, dataStart);
+}
+
+void readPlyBlob(const std::string& path, pcl::PCLPointCloud2& blob, Eigen::Vector4f& origin,
+                 Eigen::Quaternionf& orientation) {
+  pcl::PLYReader reader;
+  int version = 0;
+  const int status = callPclReader(path, [&] { return reader.read(path, blob, origin, orientation, version); });
+  if (status < 0) failRead(path, "not a valid PLY file, or truncated");
+}
+
+// ---- writing ------------------------------------------------------------------------------
+
+// PCL's writers trust the blob's sizes; an inconsistent one would be written past its data.
+void checkWritable(const std::string& path, const pcl::PCLPointCloud2& cloud) {
+  if (cloud.fields.empty()) failWrite(path, "the cloud has no fields");
+  const std::uint64_t expected = static_cast<std::uint64_t>(cloud.width) * cloud.height * cloud.point_step;
+  if (cloud.data.size() != expected) {
+    failWrite(path, "the cloud is inconsistent: " + std::to_string(cloud.data.size()) + " data bytes for " +
+                        std::to_string(cloud.width) + " x " + std::to_string(cloud.height) + " points of " +
+                        std::to_string(cloud.point_step) + " bytes");
+  }
+}
+
+int writeWithPcl(const std::string& file, const std::string& extension, const pcl::PCLPointCloud2& cloud) {
+  if (extension == ".pcd") return pcl::PCDWriter().writeBinaryCompressed(file, cloud);
+  // range_grid rather than PCL's "camera" element: PCL's own PLY reader reports each camera
+  // property as "not handled" on stderr, while both keep an organized cloud's width x height.
+  return pcl::PLYWriter().writeBinary(file, cloud, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(),
+                                      /*use_camera=*/false);
+}
+
+}  // namespace
+
+pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path) {
+  requireRegularFile(path);
+  std::error_code ec;
+  const std::uint64_t size = fs::file_size(path, ec);
+  if (ec) failRead(path, ec.message());
+  if (size % kKittiPointBytes != 0) {
+    failRead(path, "size " + std::to_string(size) + " bytes is not a multiple of " +
+                       std::to_string(kKittiPointBytes) + " (x, y, z, reflectance float32): truncated?");
+  }
+  const std::vector<unsigned char> bytes = readAllBytes(path, size);
+  pcl::PointCloud<pcl::PointXYZI> cloud;
+  cloud.resize(static_cast<std::size_t>(size / kKittiPointBytes));
+  cloud.width = static_cast<std::uint32_t>(cloud.size());  // resize(0) would leave height 0
+  cloud.height = 1;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const unsigned char* record = bytes.data() + i * kKittiPointBytes;
+    pcl::PointXYZI& p = cloud.points[i];
+    p.x = littleEndianFloat(record);
+    p.y = littleEndianFloat(record + 4);
+    p.z = littleEndianFloat(record + 8);
+    p.intensity = littleEndianFloat(record + 12);
+  }
+  setDenseness(cloud);
+  return cloud;
+}
+
+pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path) {
+  requireRegularFile(path);
+  const std::string extension = lowerExtension(path);
+  if (extension != ".pcd" && extension != ".ply") failRead(path, "expected a .pcd or .ply file");
+  std::error_code ec;
+  if (fs::file_size(path, ec) == 0 && !ec) failRead(path, "the file is empty");
+
+  pcl::PCLPointCloud2 blob;
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  if (extension == ".pcd") {
+    readPcdBlob(path, blob, origin, orientation);
+  } else {
+    readPlyBlob(path, blob, origin, orientation);
+  }
+  pcl::PointCloud<pcl::PointXYZI> cloud = toXyzi(path, blob);
+  cloud.sensor_origin_ = origin;
+  cloud.sensor_orientation_ = orientation;
+  return cloud;
+}
+
+pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path) {
+  const std::string extension = lowerExtension(path);
+  if (extension == ".bin") return readKittiBin(path);
+  if (extension == ".pcd" || extension == ".ply") return readPcdOrPly(path);
+  failRead(path, "unsupported extension '" + extension + "' (accepted: .bin, .pcd, .ply)");
+}
+
+void writeCloud(const std::string& path, const pcl::PCLPointCloud2& cloud) {
+  const std::string extension = lowerExtension(path);
+  if (extension != ".pcd" && extension != ".ply") {
+    failWrite(path, "unsupported extension '" + extension + "' (accepted: .pcd, .ply)");
+  }
+  checkWritable(path, cloud);
+  if (extension == ".ply" && cloud.data.empty()) failWrite(path, "PCL cannot write an empty cloud as PLY (use .pcd)");
+
+  const std::string temporary = detail::temporaryPathFor(path);
+  int status = -1;
+  try {
+    status = writeWithPcl(temporary, extension, cloud);
+  } catch (const std::exception& e) {
+    detail::discardTemporary(temporary);
+    failWrite(path, std::string("PCL: ") + e.what());
+  }
+  if (status != 0) {
+    detail::discardTemporary(temporary);  // PCL may leave a partial file behind
+    failWrite(path, "PCL's writer failed (is the directory missing or not writable?)");
+  }
+  detail::commitTemporary(temporary, path);
+}
+
+}  // namespace io
+}  // namespace lidar_sgm

@@ -1,0 +1,353 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include "common/synthetic_stereo.hpp"
+#include "geometry/geometry_test_helpers.hpp"
+#include "lidar_sgm/pcl/sgm_densification.hpp"
+
+using lidar_sgm::MatchMode;
+using lidar_sgm::SGMDensification;
+using lidar_sgm::geometry::OutputFrame;
+using lidar_sgm::geometry::StereoCalibration;
+using lidar_sgm::test::lidarPointAt;
+
+namespace {
+
+/// 160x96 image, fx = fy = 200, baseline 0.5 m: f*b = 100, so a wall at 4 m has d = 25 px.
+/// The LiDAR mounting is the geometry tests' (KITTI-like, 0.3 m behind, 0.1 m above, 2 deg yaw).
+StereoCalibration rig() {
+  StereoCalibration c = lidar_sgm::test::smallRig();
+  c.width = 160;
+  c.height = 96;
+  c.K << 200, 0, 80, 0, 200, 48, 0, 0, 1;
+  c.baseline = 0.5;
+  return c;
+}
+
+constexpr double kWallDepth = 4.0;
+
+/// A LiDAR-like scan of a wall at 4 m (left part) and one at 50 m (right of column 120): every
+/// 2nd column, every 4th row, as XYZI with intensity = column.
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr wallScan(const StereoCalibration& c, bool farRight = false) {
+  typename pcl::PointCloud<PointT>::Ptr scan(new pcl::PointCloud<PointT>);
+  for (int v = 2; v < c.height; v += 4) {
+    for (int u = 0; u < c.width; u += 2) {
+      const Eigen::Vector3f p = lidarPointAt(c, u, v, farRight && u > 120 ? 50.0 : kWallDepth);
+      PointT q;
+      q.x = p.x();
+      q.y = p.y();
+      q.z = p.z();
+      scan->push_back(q);
+    }
+  }
+  scan->header.frame_id = "velodyne";
+  scan->header.stamp = 1234567;
+  return scan;
+}
+
+/// The depth of a LiDAR-frame point seen from the left camera.
+double cameraDepth(const StereoCalibration& c, const Eigen::Vector3f& p) {
+  return (c.T_cam_lidar * p.cast<double>()).z();
+}
+
+pcl::PointCloud<pcl::RGB> toRgb(const lidar_sgm::Image<std::uint8_t>& gray) {
+  pcl::PointCloud<pcl::RGB> image(static_cast<std::uint32_t>(gray.width()), static_cast<std::uint32_t>(gray.height()));
+  for (int y = 0; y < gray.height(); ++y) {
+    for (int x = 0; x < gray.width(); ++x) {
+      image.at(x, y).r = image.at(x, y).g = image.at(x, y).b = gray(x, y);
+    }
+  }
+  return image;
+}
+
+/// A color image whose color encodes the pixel: r = x, g = y, b = 7.
+pcl::PointCloud<pcl::RGB> pixelCodedImage(int width, int height) {
+  pcl::PointCloud<pcl::RGB> image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      image.at(x, y).r = static_cast<std::uint8_t>(x);
+      image.at(x, y).g = static_cast<std::uint8_t>(y);
+      image.at(x, y).b = 7;
+    }
+  }
+  return image;
+}
+
+}  // namespace
+
+TEST(SGMDensification, LidarOnlyGivesADenseCloudOnTheWallInTheInputFrame) {
+  const StereoCalibration c = rig();
+  auto scan = wallScan<pcl::PointXYZI>(c);
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZ> sgm;
+  sgm.setInputCloud(scan);
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(64);
+  pcl::PointCloud<pcl::PointXYZ> dense;
+  sgm.filter(dense);
+  ASSERT_TRUE(sgm.getLastError().empty()) << sgm.getLastError();
+  EXPECT_EQ(sgm.getLastMode(), MatchMode::LidarOnly);
+  EXPECT_GE(dense.size(), 5 * scan->size());
+  EXPECT_EQ(dense.height, 1u);
+  EXPECT_EQ(dense.width, dense.size());
+  EXPECT_TRUE(dense.is_dense);
+  EXPECT_EQ(dense.header.frame_id, "velodyne");
+  EXPECT_EQ(dense.header.stamp, 1234567u);
+  int offWall = 0;
+  for (const auto& p : dense) offWall += std::abs(cameraDepth(c, p.getVector3fMap()) - kWallDepth) > 0.02 ? 1 : 0;
+  EXPECT_EQ(offWall, 0);
+  // Timings and the projection's bookkeeping are reported.
+  EXPECT_EQ(sgm.getProjectedLidar().stats.kept, scan->size());
+  EXPECT_GT(sgm.getTimings().match, 0.0);
+  EXPECT_EQ(sgm.getDisparityImage().width(), 160);
+}
+
+TEST(SGMDensification, OrganizedOutputKeepsEveryPixelWithNaNBeyondMaxDepth) {
+  const StereoCalibration c = rig();
+  auto scan = wallScan<pcl::PointXYZI>(c, /*farRight=*/true);
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZ> sgm;
+  sgm.setInputCloud(scan);
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(64);
+  sgm.setMaxDepth(20.0);  // the 50 m wall is cut
+  sgm.setKeepOrganized(true);
+  pcl::PointCloud<pcl::PointXYZ> organized;
+  sgm.filter(organized);
+  ASSERT_EQ(organized.width, 160u);
+  ASSERT_EQ(organized.height, 96u);
+  EXPECT_FALSE(organized.is_dense);
+  EXPECT_TRUE(std::isnan(organized.at(150, 50).x));   // far wall: cut
+  EXPECT_TRUE(std::isfinite(organized.at(40, 50).x));  // near wall
+  EXPECT_NEAR(cameraDepth(c, organized.at(40, 50).getVector3fMap()), kWallDepth, 0.02);
+
+  sgm.setKeepOrganized(false);
+  pcl::PointCloud<pcl::PointXYZ> unorganized;
+  sgm.filter(unorganized);
+  std::size_t finite = 0;
+  for (const auto& p : organized) finite += std::isfinite(p.x) ? 1 : 0;
+  EXPECT_EQ(unorganized.size(), finite);
+  EXPECT_TRUE(unorganized.is_dense);
+
+  sgm.setStride(2);
+  sgm.setKeepOrganized(true);
+  sgm.filter(organized);
+  EXPECT_EQ(organized.width, 80u);
+  EXPECT_EQ(organized.height, 48u);
+}
+
+TEST(SGMDensification, CameraFrameIsTcamLidarTimesTheLidarFrame) {
+  const StereoCalibration c = rig();
+  auto scan = wallScan<pcl::PointXYZ>(c);
+  SGMDensification<pcl::PointXYZ, pcl::PointXYZ> sgm;
+  sgm.setInputCloud(scan);
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(64);
+  pcl::PointCloud<pcl::PointXYZ> inLidar;
+  pcl::PointCloud<pcl::PointXYZ> inCamera;
+  sgm.filter(inLidar);
+  sgm.setOutputFrame(OutputFrame::Camera);
+  sgm.setCameraFrameId("cam2");
+  sgm.filter(inCamera);
+  ASSERT_EQ(inLidar.size(), inCamera.size());
+  ASSERT_FALSE(inLidar.empty());
+  for (std::size_t i = 0; i < inLidar.size(); ++i) {
+    const Eigen::Vector3d expected = c.T_cam_lidar * inLidar[i].getVector3fMap().cast<double>();
+    ASSERT_LT((expected - inCamera[i].getVector3fMap().cast<double>()).norm(), 1e-4);
+  }
+  EXPECT_EQ(inCamera.header.frame_id, "cam2");
+  EXPECT_EQ(inCamera.header.stamp, inLidar.header.stamp);
+}
+
+TEST(SGMDensification, HonoursIndices) {
+  const StereoCalibration c = rig();
+  auto scan = wallScan<pcl::PointXYZI>(c);
+  const std::size_t wallPoints = scan->size();
+  // Append a decoy at 1.5 m in front of the wall: only indices into the wall are given.
+  for (int v = 2; v < c.height; v += 4) {
+    for (int u = 0; u < c.width; u += 2) {
+      const Eigen::Vector3f p = lidarPointAt(c, u, v, 1.5);
+      pcl::PointXYZI q;
+      q.x = p.x();
+      q.y = p.y();
+      q.z = p.z();
+      scan->push_back(q);
+    }
+  }
+  pcl::IndicesPtr wall(new pcl::Indices);
+  for (std::size_t i = 0; i < wallPoints; ++i) wall->push_back(static_cast<pcl::index_t>(i));
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZ> sgm;
+  sgm.setInputCloud(scan);
+  sgm.setIndices(wall);
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(128);  // 1.5 m is d = 66.7 px: searchable, so it would show
+  pcl::PointCloud<pcl::PointXYZ> dense;
+  sgm.filter(dense);
+  ASSERT_FALSE(dense.empty()) << sgm.getLastError();
+  EXPECT_EQ(sgm.getProjectedLidar().stats.input, wallPoints);
+  for (const auto& p : dense) ASSERT_NEAR(cameraDepth(c, p.getVector3fMap()), kWallDepth, 0.02);
+
+  sgm.setIndices(pcl::IndicesPtr(new pcl::Indices));
+  sgm.filter(dense);
+  EXPECT_TRUE(dense.empty());
+  EXPECT_NE(sgm.getLastError().find("empty"), std::string::npos) << sgm.getLastError();
+}
+
+TEST(SGMDensification, ColorComesFromTheColorImageAtEachPointsPixel) {
+  const StereoCalibration c = rig();
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB> sgm;
+  sgm.setInputCloud(wallScan<pcl::PointXYZI>(c));
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(64);
+  sgm.setColorImage(pixelCodedImage(c.width, c.height));
+  sgm.setKeepOrganized(true);
+  pcl::PointCloud<pcl::PointXYZRGB> dense;
+  sgm.filter(dense);
+  ASSERT_EQ(dense.size(), 160u * 96u) << sgm.getLastError();
+  int checked = 0;
+  for (int y = 0; y < 96; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      const auto& p = dense.at(x, y);
+      if (!std::isfinite(p.x)) continue;
+      ASSERT_EQ(p.r, x);
+      ASSERT_EQ(p.g, y);
+      ASSERT_EQ(p.b, 7);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 160 * 96 / 2);
+}
+
+TEST(SGMDensification, FusedWithAStereoPairAsPclImagesOrGrayViewsAgrees) {
+  StereoCalibration c = rig();
+  const auto stereo = lidar_sgm::test::makeStereo(c.width, c.height, [](double, double) { return 25.0; });
+  auto scan = wallScan<pcl::PointXYZI>(c);
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZRGBA> sgm;
+  sgm.setInputCloud(scan);
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(64);
+  sgm.setStereoPair(toRgb(stereo.left), toRgb(stereo.right));
+  pcl::PointCloud<pcl::PointXYZRGBA> fromPcl;
+  sgm.filter(fromPcl);
+  ASSERT_FALSE(fromPcl.empty()) << sgm.getLastError();
+  EXPECT_EQ(sgm.getLastMode(), MatchMode::Fused);
+  const lidar_sgm::Image<std::int16_t> disparityFromPcl = sgm.getDisparityImage();
+
+  sgm.setStereoPair(stereo.left.view(), stereo.right.view());
+  pcl::PointCloud<pcl::PointXYZRGBA> fromViews;
+  sgm.filter(fromViews);
+  ASSERT_EQ(fromViews.size(), fromPcl.size());
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) ASSERT_EQ(sgm.getDisparityImage()(x, y), disparityFromPcl(x, y));
+  }
+  // The left image colors the points (gray here: r = g = b).
+  const auto& p = fromPcl[fromPcl.size() / 2];
+  EXPECT_EQ(p.r, p.g);
+  EXPECT_EQ(p.g, p.b);
+  int offWall = 0;
+  for (const auto& q : fromPcl) offWall += std::abs(cameraDepth(c, q.getVector3fMap()) - kWallDepth) > 0.02 ? 1 : 0;
+  EXPECT_EQ(offWall, 0);
+
+  // A calibration without a size (KITTI object files) takes the pair's size.
+  c.width = 0;
+  c.height = 0;
+  sgm.setCalibration(c);
+  sgm.filter(fromViews);
+  EXPECT_EQ(fromViews.size(), fromPcl.size()) << sgm.getLastError();
+  sgm.clearStereoPair();
+  sgm.filter(fromViews);
+  EXPECT_TRUE(fromViews.empty());
+  EXPECT_NE(sgm.getLastError().find("no image size"), std::string::npos) << sgm.getLastError();
+}
+
+namespace {
+/// Runs `breakIt` on a working setup and checks that filter() clears a filled output and
+/// names `mention` in the error.
+void expectFailure(const std::function<void(SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB>&)>& breakIt,
+                   const std::string& mention) {
+  const StereoCalibration c = rig();
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB> sgm;
+  sgm.setInputCloud(wallScan<pcl::PointXYZI>(c));
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(64);
+  breakIt(sgm);
+  pcl::PointCloud<pcl::PointXYZRGB> out(3, 1);  // stale content must go
+  sgm.filter(out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(out.width, 0u);
+  EXPECT_NE(sgm.getLastError().find(mention), std::string::npos)
+      << "expected '" << mention << "' in: " << sgm.getLastError();
+}
+}  // namespace
+
+TEST(SGMDensification, BadPreconditionsGiveAnEmptyOutputAndANamedError) {
+  using Sgm = SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB>;
+  expectFailure([](Sgm& s) { s.setInputCloud(pcl::PointCloud<pcl::PointXYZI>::Ptr(new pcl::PointCloud<pcl::PointXYZI>)); },
+                "empty");
+  expectFailure([](Sgm& s) {
+    StereoCalibration bad = rig();
+    bad.baseline = 0.0;
+    s.setCalibration(bad);
+  }, "baseline");
+  expectFailure([](Sgm& s) { s.setAlpha(1.5f); }, "alpha");
+  expectFailure([](Sgm& s) { s.setMaxDepth(-1.0); }, "maxDepth");
+  expectFailure([](Sgm& s) { s.setPaths(3); }, "paths");
+  expectFailure([](Sgm& s) {
+    lidar_sgm::Image<std::uint8_t> left(160, 96), right(150, 96);
+    s.setStereoPair(left.view(), right.view());
+  }, "150x96");
+  expectFailure([](Sgm& s) {
+    lidar_sgm::Image<std::uint8_t> left(150, 96), right(150, 96);
+    s.setStereoPair(left.view(), right.view());
+  }, "calibration is for 160x96");
+  expectFailure([](Sgm& s) { s.setColorImage(pcl::PointCloud<pcl::RGB>(160, 1)); }, "organized");
+  expectFailure([](Sgm& s) {
+    pcl::PointCloud<pcl::PointXYZI>::Ptr behind(new pcl::PointCloud<pcl::PointXYZI>);
+    pcl::PointXYZI p;
+    p.x = -5.0f;  // LiDAR x points forward: this is behind the camera
+    behind->push_back(p);
+    s.setInputCloud(behind);
+  }, "1 behind the camera");
+}
+
+TEST(SGMDensification, NoInputCloudIsAnError) {
+  SGMDensification<pcl::PointXYZ, pcl::PointXYZ> sgm;
+  sgm.setCalibration(rig());
+  pcl::PointCloud<pcl::PointXYZ> out(2, 1);
+  sgm.filter(out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_NE(sgm.getLastError().find("no input cloud"), std::string::npos) << sgm.getLastError();
+}
+
+template <typename Types>
+class SGMDensificationTypes : public ::testing::Test {};
+template <typename In, typename Out>
+struct PointTypes {
+  using PointIn = In;
+  using PointOut = Out;
+};
+using Instantiated = ::testing::Types<PointTypes<pcl::PointXYZ, pcl::PointXYZ>, PointTypes<pcl::PointXYZ, pcl::PointXYZRGB>,
+                                      PointTypes<pcl::PointXYZ, pcl::PointXYZRGBA>, PointTypes<pcl::PointXYZI, pcl::PointXYZ>,
+                                      PointTypes<pcl::PointXYZI, pcl::PointXYZRGB>, PointTypes<pcl::PointXYZI, pcl::PointXYZRGBA>>;
+TYPED_TEST_SUITE(SGMDensificationTypes, Instantiated);
+
+TYPED_TEST(SGMDensificationTypes, EachInstantiatedTypeDensifies) {
+  const StereoCalibration c = rig();
+  typename SGMDensification<typename TypeParam::PointIn, typename TypeParam::PointOut>::Ptr sgm(
+      new SGMDensification<typename TypeParam::PointIn, typename TypeParam::PointOut>);
+  sgm->setInputCloud(wallScan<typename TypeParam::PointIn>(c));
+  sgm->setCalibration(c);
+  sgm->setNumDisparities(64);
+  sgm->setColorImage(pixelCodedImage(c.width, c.height));
+  pcl::PointCloud<typename TypeParam::PointOut> dense;
+  sgm->filter(dense);
+  ASSERT_FALSE(dense.empty()) << sgm->getLastError();
+  EXPECT_NEAR(cameraDepth(c, dense[dense.size() / 2].getVector3fMap()), kWallDepth, 0.02);
+  if constexpr (pcl::traits::has_color_v<typename TypeParam::PointOut>) {
+    EXPECT_EQ(dense[0].b, 7);  // colored from the pixel-coded image
+  }
+}
