@@ -42,10 +42,13 @@ void printHelp(const char* program) {
       "%s"
       "  -keep_organized          one point per pixel, NaN where there is none (default: valid points only)\n"
       "  -frame lidar|camera      output frame (default: lidar, the input's frame)\n"
-      "  -max_depth M             drop output points deeper than M metres (default: %g)\n"
+      "  -max_depth M             drop output points deeper than M metres, 0 = keep all (default: %g)\n"
       "  -stride S                every S-th pixel in x and y (default: %d)\n"
-      "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with a point\n"
-      "                           more than max(%g px, %g*d) nearer within +-%d columns, +-%d rows)\n"
+      "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with points\n"
+      "                           more than max(%g px, %g*d) nearer on two opposite sides within +-%d columns,\n"
+      "                           +-%d rows)\n"
+      "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
+      "                           cleared, nothing was measured there)\n"
       "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
       "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -h                       this help\n",
@@ -70,6 +73,28 @@ void parseImageSize(const std::string& text, int& width, int& height) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("option -image_size: '" + text + "' must be positive");
 }
 
+struct OutputOptions {
+  lidar_sgm::geometry::OutputFrame frame = lidar_sgm::geometry::OutputFrame::Lidar;
+  double maxDepth = lidar_sgm::geometry::ReprojectionOptions().maxDepth;
+  int stride = 1;
+};
+
+/// -frame, -max_depth, -stride, checked before any file is read.
+OutputOptions outputOptionsFrom(const Arguments& args) {
+  OutputOptions o;
+  const std::string frame = args.text("frame", "lidar");
+  if (frame != "lidar" && frame != "camera") {
+    throw std::invalid_argument("option -frame: '" + frame + "' must be lidar or camera");
+  }
+  o.frame = frame == "camera" ? lidar_sgm::geometry::OutputFrame::Camera : lidar_sgm::geometry::OutputFrame::Lidar;
+  o.maxDepth = args.number("max_depth", o.maxDepth);
+  if (o.maxDepth < 0.0) throw std::invalid_argument("option -max_depth: must be >= 0 [m] (0 = keep all)");
+  if (o.maxDepth == 0.0) o.maxDepth = std::numeric_limits<double>::infinity();
+  o.stride = args.integer("stride", o.stride);
+  if (o.stride < 1) throw std::invalid_argument("option -stride: must be >= 1");
+  return o;
+}
+
 std::size_t validPixels(const lidar_sgm::Image<std::int16_t>& disparity) {
   std::size_t valid = 0;
   for (int y = 0; y < disparity.height(); ++y) {
@@ -91,14 +116,12 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   projection.occlusion.enabled = !args.has("no_occlusion_filter");
   sgm.setProjectionOptions(projection);
   sgm.setKeepOrganized(args.has("keep_organized"));
+  sgm.setCropToScan(!args.has("no_crop_to_scan"));
+  const OutputOptions out = outputOptionsFrom(args);
+  sgm.setOutputFrame(out.frame);
+  sgm.setMaxDepth(out.maxDepth);
+  sgm.setStride(out.stride);
   const std::string frame = args.text("frame", "lidar");
-  if (frame != "lidar" && frame != "camera") {
-    throw std::invalid_argument("option -frame: '" + frame + "' must be lidar or camera");
-  }
-  sgm.setOutputFrame(frame == "camera" ? lidar_sgm::geometry::OutputFrame::Camera
-                                       : lidar_sgm::geometry::OutputFrame::Lidar);
-  sgm.setMaxDepth(args.number("max_depth", sgm.getMaxDepth()));
-  sgm.setStride(args.integer("stride", sgm.getStride()));
   if (!right.empty()) {
     sgm.setStereoPair(lidar_sgm::io::toPclImage(left), lidar_sgm::io::toPclImage(right));
   } else if (!left.empty()) {
@@ -108,6 +131,10 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   pcl::PointCloud<PointOutT> dense;
   sgm.filter(dense);
   if (!sgm.getLastError().empty()) throw std::runtime_error(sgm.getLastError());
+  if (dense.empty()) {
+    throw std::runtime_error("the dense cloud is empty: no pixel has a disparity within -max_depth " +
+                             std::to_string(out.maxDepth) + " m");
+  }
   const auto& timings = sgm.getTimings();
   const auto& stats = sgm.getProjectedLidar().stats;
   const auto& used = sgm.getDisparityImage();
@@ -144,7 +171,8 @@ int run(int argc, char** argv) {
   const Arguments args(argc, argv,
                        joined(lidar_sgm::apps::sgmValueOptions(),
                               {"calib", "left", "right", "image_size", "frame", "max_depth", "stride", "disparity", "color"}),
-                       joined(lidar_sgm::apps::sgmFlagOptions(), {"h", "help", "keep_organized", "no_occlusion_filter"}));
+                       joined(lidar_sgm::apps::sgmFlagOptions(),
+                              {"h", "help", "keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (args.has("h") || args.has("help")) {
     printHelp(argv[0]);
     return 0;
@@ -176,7 +204,15 @@ int run(int argc, char** argv) {
     }
     outputs.push_back(path);
   }
+  for (const std::string& path : outputs) {
+    // Checked now, so a late failure cannot leave the cloud written and a picture missing.
+    const fs::path folder = fs::absolute(path).parent_path();
+    if (!fs::is_directory(folder)) {
+      throw std::invalid_argument("cannot write '" + path + "': the folder '" + folder.string() + "' does not exist");
+    }
+  }
   lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
+  outputOptionsFrom(args);
   int width = 0;
   int height = 0;
   if (args.has("image_size")) parseImageSize(args.text("image_size", ""), width, height);
@@ -192,6 +228,11 @@ int run(int argc, char** argv) {
   std::printf("Loading %s", calibPath.c_str());
   const lidar_sgm::geometry::StereoCalibration calibration = lidar_sgm::io::readCalibration(calibPath, width, height);
   std::printf(" [done, %.0f ms : %s]\n", calibTimer.elapsedMs(), lidar_sgm::geometry::describe(calibration).c_str());
+  if (args.has("image_size") && (calibration.width != width || calibration.height != height)) {
+    throw std::invalid_argument("-image_size " + args.text("image_size", "") + " disagrees with the calibration '" +
+                                calibPath + "', which is for " + std::to_string(calibration.width) + "x" +
+                                std::to_string(calibration.height));
+  }
 
   cv::Mat left;
   cv::Mat right;

@@ -43,20 +43,38 @@ Image<std::int16_t> nearestPerPixel(int width, int height, const std::vector<Can
   return nearest;
 }
 
-/// The nearest disparity in each row segment [x - r, x + r] (a horizontal running max), so the
-/// window test below costs O(halfHeight) per point instead of O(window area).
-Image<std::int16_t> rowMax(const Image<std::int16_t>& nearest, int r) {
-  Image<std::int16_t> out(nearest.width(), nearest.height(), kInvalidDisparity);
-  for (int y = 0; y < nearest.height(); ++y) {
-    for (int x = 0; x < nearest.width(); ++x) {
-      std::int16_t m = kInvalidDisparity;
-      for (int xx = std::max(0, x - r); xx <= std::min(nearest.width() - 1, x + r); ++xx) {
-        m = std::max(m, nearest(xx, y));
-      }
-      out(x, y) = m;
+/// Whether a point nearer than `limit16` (x16 disparity) lies in the rectangle
+/// [x0, x1] x [y0, y1] (clipped to the image).
+bool nearerIn(const Image<std::int16_t>& nearest, int x0, int x1, int y0, int y1, int limit16) {
+  x0 = std::max(x0, 0);
+  y0 = std::max(y0, 0);
+  x1 = std::min(x1, nearest.width() - 1);
+  y1 = std::min(y1, nearest.height() - 1);
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      if (nearest(x, y) > limit16) return true;
     }
   }
-  return out;
+  return false;
+}
+
+/// The occlusion test of OcclusionFilter for one candidate.
+bool isOccluded(const Image<std::int16_t>& nearest, const Candidate& c, const OcclusionFilter& f) {
+  const double gap = std::max(f.minGap, f.relativeGap * c.disparity16 / kDisparityScale);
+  const int limit16 = c.disparity16 + static_cast<int>(std::floor(gap * kDisparityScale));
+  if (nearest(c.x, c.y) > limit16) return true;  // a nearer point in the very same pixel
+  const int hw = f.halfWidth;
+  const int hh = f.halfHeight;
+  if (!f.requireEnclosed) return nearerIn(nearest, c.x - hw, c.x + hw, c.y - hh, c.y + hh, limit16);
+  // Enclosed: nearer points on both sides, above and below or left and right. A hidden point
+  // projects inside the foreground's silhouette; a visible background point next to a
+  // foreground edge has the foreground on one side only.
+  const bool above = nearerIn(nearest, c.x - hw, c.x + hw, c.y - hh, c.y - 1, limit16);
+  const bool below = nearerIn(nearest, c.x - hw, c.x + hw, c.y + 1, c.y + hh, limit16);
+  if (above && below) return true;
+  const bool left = nearerIn(nearest, c.x - hw, c.x - 1, c.y - hh, c.y + hh, limit16);
+  const bool right = nearerIn(nearest, c.x + 1, c.x + hw, c.y - hh, c.y + hh, limit16);
+  return left && right;
 }
 
 }  // namespace
@@ -123,23 +141,14 @@ ProjectedLidar project(const std::vector<Eigen::Vector3f>& pointsLidar, const St
   }
 
   const OcclusionFilter& filter = options.occlusion;
-  Image<std::int16_t> windowRowMax;
-  if (filter.enabled && !candidates.empty()) {
-    windowRowMax = rowMax(nearestPerPixel(out.width, out.height, candidates), filter.halfWidth);
-  }
+  Image<std::int16_t> nearest;
+  if (filter.enabled && !candidates.empty()) nearest = nearestPerPixel(out.width, out.height, candidates);
   out.samples.reserve(candidates.size());
   out.sourceIndex.reserve(candidates.size());
   for (const Candidate& c : candidates) {
-    if (filter.enabled) {
-      int nearest16 = kInvalidDisparity;
-      for (int y = std::max(0, c.y - filter.halfHeight); y <= std::min(out.height - 1, c.y + filter.halfHeight); ++y) {
-        nearest16 = std::max<int>(nearest16, windowRowMax(c.x, y));
-      }
-      const double gap = std::max(filter.minGap, filter.relativeGap * c.disparity16 / kDisparityScale);
-      if (nearest16 - c.disparity16 > gap * kDisparityScale) {
-        ++out.stats.occluded;
-        continue;
-      }
+    if (filter.enabled && isOccluded(nearest, c, filter)) {
+      ++out.stats.occluded;
+      continue;
     }
     out.samples.push_back({c.x, c.y, c.disparity16});
     out.sourceIndex.push_back(c.source);

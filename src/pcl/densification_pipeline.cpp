@@ -103,6 +103,10 @@ geometry::DenseCloud DensificationPipeline::run(const std::vector<Eigen::Vector3
   }
   matcher_->compute(left, right, &lidar, disparity_.view());
   lastMode_ = matcher_->lastMode();
+  if (cropToScan_ && lastMode_ == MatchMode::LidarOnly) {
+    // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
+    geometry::cropToScanRows(disparity_.view(), projected_.samples, params_.lidarCoverageRows, 2);
+  }
   timings_.match = millisecondsSince(start);
 
   start = std::chrono::steady_clock::now();

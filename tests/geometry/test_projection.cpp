@@ -93,20 +93,36 @@ TEST(Projection, KeepsEveryPointOfAPixelAndTheNearestWinsInTheSparseImage) {
   EXPECT_EQ(sparse(21, 15), kInvalidDisparity);
 }
 
-TEST(Projection, OcclusionFilterDropsABackgroundPointNextToANearerOne) {
+TEST(Projection, OcclusionFilterDropsABackgroundPointInsideANearerSurface) {
   const StereoCalibration c = smallRig();
-  // Foreground at 5 m (d = 10 px) at (40, 20); background at 20 m (d = 2.5 px) at
-  // (42, 24): inside the default window (+-2 columns, +-4 rows) and 7.5 px farther: dropped.
-  // A background point at (43, 20) is 3 columns away: kept; one at (40, 25) is 5 rows away: kept.
-  const std::vector<Eigen::Vector3f> points = {lidarPointAt(c, 40, 20, 5.0), lidarPointAt(c, 42, 24, 20.0),
-                                               lidarPointAt(c, 43, 20, 20.0), lidarPointAt(c, 40, 25, 20.0)};
-  const ProjectedLidar filtered = project(points, c);
-  EXPECT_EQ(filtered.stats.occluded, 1u);
-  ASSERT_EQ(filtered.samples.size(), 3u);
-  EXPECT_EQ(filtered.sourceIndex[0], 0u);
-  EXPECT_EQ(filtered.sourceIndex[1], 2u);
-  EXPECT_EQ(filtered.sourceIndex[2], 3u);
-  EXPECT_EQ(project(points, c, withoutOcclusionFilter()).samples.size(), 4u);
+  // Foreground at 5 m (d = 10 px) on two beams, rows 20 and 28, column 40. Background at 20 m
+  // (d = 2.5 px, 7.5 px farther):
+  //   (41, 24): foreground above (rows 20..23) and below (25..28) within +-2 columns: dropped;
+  //   (43, 24): 3 columns away, outside the window: kept;
+  //   (40, 31): foreground above only (row 28): kept when enclosure is required, dropped when not.
+  const std::vector<Eigen::Vector3f> points = {lidarPointAt(c, 40, 20, 5.0), lidarPointAt(c, 40, 28, 5.0),
+                                               lidarPointAt(c, 41, 24, 20.0), lidarPointAt(c, 43, 24, 20.0),
+                                               lidarPointAt(c, 40, 31, 20.0)};
+  const ProjectedLidar enclosed = project(points, c);
+  EXPECT_EQ(enclosed.stats.occluded, 1u);
+  ASSERT_EQ(enclosed.samples.size(), 4u);
+  EXPECT_EQ(enclosed.sourceIndex[2], 3u);
+  EXPECT_EQ(enclosed.sourceIndex[3], 4u);
+
+  ProjectionOptions anywhere;
+  anywhere.occlusion.requireEnclosed = false;
+  const ProjectedLidar p = project(points, c, anywhere);
+  EXPECT_EQ(p.stats.occluded, 2u);
+  ASSERT_EQ(p.samples.size(), 3u);
+  EXPECT_EQ(p.sourceIndex[2], 3u);
+
+  // Left and right enclosure counts too: foreground at columns 38 and 42 of row 24.
+  const std::vector<Eigen::Vector3f> sideways = {lidarPointAt(c, 38, 24, 5.0), lidarPointAt(c, 42, 24, 5.0),
+                                                 lidarPointAt(c, 40, 24, 20.0)};
+  EXPECT_EQ(project(sideways, c).stats.occluded, 1u);
+  // A nearer point in the very same pixel always hides a farther one.
+  EXPECT_EQ(project({lidarPointAt(c, 40, 24, 5.0), lidarPointAt(c, 40, 24, 20.0)}, c).stats.occluded, 1u);
+  EXPECT_EQ(project(points, c, withoutOcclusionFilter()).samples.size(), 5u);
 }
 
 TEST(Projection, OcclusionFilterKeepsASlantedSurface) {
@@ -130,6 +146,7 @@ TEST(Projection, RelativeGapScalesWithDisparity) {
   // Two points 4 rows apart at d = 40 and 44 px: the allowed gap for the farther one is
   // max(2, 10 % of 40) = 4 px and 44 - 40 is not above it: kept. At 40 and 45: 5 > 4: dropped.
   ProjectionOptions o;
+  o.occlusion.requireEnclosed = false;
   const auto at = [&](double d, int v) { return lidarPointAt(c, 60, v, 50.0 / d); };
   EXPECT_EQ(project({at(40.0, 30), at(44.0, 34)}, c, o).stats.occluded, 0u);
   EXPECT_EQ(project({at(40.0, 30), at(45.0, 34)}, c, o).stats.occluded, 1u);

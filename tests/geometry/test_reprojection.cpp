@@ -7,6 +7,7 @@
 #include "geometry/geometry_test_helpers.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/geometry/scan_extent.hpp"
 
 using lidar_sgm::Image;
 using lidar_sgm::kInvalidDisparity;
@@ -150,4 +151,24 @@ TEST(Reprojection, RejectsMismatchedSizesAndBadOptions) {
   o = ReprojectionOptions();
   o.maxDepth = 0.0;
   EXPECT_THROW(lidar_sgm::geometry::reproject(right.view(), c, o), std::invalid_argument);
+}
+
+TEST(ScanExtent, ClearsAboveTheTopAndBelowTheBottomSampleOfEachColumn) {
+  // 10x20 image, all valid. Samples: column 2 at rows 8 and 12; column 7 at row 5.
+  Image<std::int16_t> disparity(10, 20, 160);
+  const std::vector<lidar_sgm::LidarSample> samples = {{2, 8, 160}, {2, 12, 160}, {7, 5, 160}};
+  // margin 2 rows, 1 column: columns 1..3 keep rows 6..14; columns 6..8 keep rows 3..7;
+  // columns 0, 4, 5, 9 have no sample within 1 column: cleared.
+  const std::size_t cleared = lidar_sgm::geometry::cropToScanRows(disparity.view(), samples, 2, 1);
+  EXPECT_EQ(cleared, 200u - 3 * 9 - 3 * 5);
+  EXPECT_EQ(disparity(2, 5), kInvalidDisparity);
+  EXPECT_EQ(disparity(2, 6), 160);
+  EXPECT_EQ(disparity(3, 14), 160);
+  EXPECT_EQ(disparity(3, 15), kInvalidDisparity);
+  EXPECT_EQ(disparity(8, 3), 160);
+  EXPECT_EQ(disparity(8, 8), kInvalidDisparity);
+  EXPECT_EQ(disparity(0, 10), kInvalidDisparity);
+  EXPECT_EQ(disparity(5, 5), kInvalidDisparity);
+  EXPECT_THROW(lidar_sgm::geometry::cropToScanRows(disparity.view(), {{10, 0, 16}}, 2, 1), std::invalid_argument);
+  EXPECT_THROW(lidar_sgm::geometry::cropToScanRows(disparity.view(), samples, -1, 1), std::invalid_argument);
 }

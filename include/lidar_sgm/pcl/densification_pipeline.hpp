@@ -16,6 +16,7 @@
 #include "lidar_sgm/geometry/calibration.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/geometry/scan_extent.hpp"
 
 namespace lidar_sgm {
 
@@ -62,6 +63,11 @@ class DensificationPipeline {
   const geometry::ReprojectionOptions& reprojectionOptions() const { return reprojectionOptions_; }
   geometry::ReprojectionOptions& reprojectionOptions() { return reprojectionOptions_; }
 
+  /// LiDAR-only mode: clear the pixels above the scan's top and below its bottom point per
+  /// column (+- lidarCoverageRows rows, +-2 columns), where nothing was measured (default on).
+  void setCropToScan(bool crop) { cropToScan_ = crop; }
+  bool cropToScan() const { return cropToScan_; }
+
   /// One frame: `pointsLidar` in the LiDAR frame. The image size is the calibration's, or the
   /// images' when the calibration has none (KITTI object files carry no size). Throws when
   /// the calibration, parameters or image sizes are invalid, or no point projects into the image.
@@ -95,6 +101,7 @@ class DensificationPipeline {
   geometry::ProjectedLidar projected_;
   DensificationTimings timings_;
   MatchMode lastMode_ = MatchMode::LidarOnly;
+  bool cropToScan_ = true;
 };
 
 }  // namespace lidar_sgm

@@ -90,6 +90,11 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   void setProjectionOptions(const geometry::ProjectionOptions& options) { pipeline_.setProjectionOptions(options); }
   const geometry::ProjectionOptions& getProjectionOptions() const { return pipeline_.projectionOptions(); }
 
+  /// LiDAR-only mode: no points above the scan's top or below its bottom beam, per column,
+  /// where nothing was measured (default true).
+  void setCropToScan(bool crop) { pipeline_.setCropToScan(crop); }
+  bool getCropToScan() const { return pipeline_.cropToScan(); }
+
   void setKeepOrganized(bool keep) { pipeline_.reprojectionOptions().keepOrganized = keep; }
   bool getKeepOrganized() const { return pipeline_.reprojectionOptions().keepOrganized; }
   void setOutputFrame(geometry::OutputFrame frame) { pipeline_.reprojectionOptions().frame = frame; }

@@ -1,0 +1,353 @@
+// The lidar_sgm_densify tool as a user runs it on the bundled synthetic sample (data/sample):
+// exit codes, messages, the clouds it writes and the files it leaves behind.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include "lidar_sgm/io/calibration_io.hpp"
+#include "lidar_sgm/io/cloud_io.hpp"
+
+namespace lidar_sgm {
+namespace {
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode;
+  std::string output;  // stdout + stderr
+};
+
+RunResult runTool(const std::string& arguments) {
+  const std::string command = std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+const std::string kSample = LIDAR_SGM_SAMPLE_DIR;
+const std::string kScan = kSample + "/velodyne/000000.bin";
+const std::string kCalib = kSample + "/calib/000000.txt";
+const std::string kLeft = kSample + "/image_2/000000.png";
+const std::string kRight = kSample + "/image_3/000000.png";
+constexpr int kWidth = 1242;  // the sample's image size (data/sample/README.md)
+constexpr int kHeight = 375;
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// The "N kept" count of the tool's "Projecting" line; 0 when absent.
+std::size_t keptPoints(const std::string& output) {
+  std::smatch match;
+  const std::regex kept("Projecting \\[done, [0-9.]+ ms : [0-9]+ in: ([0-9]+) kept");
+  return std::regex_search(output, match, kept) ? std::stoul(match[1].str()) : 0;
+}
+
+bool hasField(const pcl::PCLPointCloud2& cloud, const std::string& name) {
+  for (const pcl::PCLPointField& field : cloud.fields) {
+    if (field.name == name) return true;
+  }
+  return false;
+}
+
+std::string fieldNames(const pcl::PCLPointCloud2& cloud) {
+  std::string names;
+  for (const pcl::PCLPointField& field : cloud.fields) names += field.name + " ";
+  return names;
+}
+
+bool isFinitePoint(const pcl::PointXYZ& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+class DensifyCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("lidar_sgm_densify_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string p(const std::string& name) const { return (dir_ / name).string(); }
+  std::size_t fileCount() const {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+  }
+  /// Files whose name starts with '.' (the tools' temporary files).
+  std::vector<std::string> hiddenFiles() const {
+    std::vector<std::string> hidden;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      const std::string name = entry.path().filename().string();
+      if (!name.empty() && name[0] == '.') hidden.push_back(name);
+    }
+    return hidden;
+  }
+  void writeBytes(const std::string& name, const std::string& bytes) {
+    std::ofstream out(p(name), std::ios::binary);
+    out << bytes;
+    ASSERT_TRUE(out.good());
+  }
+  /// A small cloud of `n` points in front of (x > 0) or behind (x < 0) the KITTI LiDAR.
+  void writeCloud(const std::string& name, bool behind, int n = 50) {
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    for (int i = 0; i < n; ++i) {
+      const float x = behind ? -10.0f - 0.1f * static_cast<float>(i) : 10.0f + 0.1f * static_cast<float>(i);
+      cloud.push_back(pcl::PointXYZ(x, 0.05f * static_cast<float>(i % 10) - 0.25f, -0.5f));
+    }
+    io::writeCloud(p(name), cloud);
+  }
+  // A failing call must exit non-zero, say `message`, and leave no new file behind.
+  void expectFailure(const std::string& arguments, const std::string& message) {
+    const std::size_t before = fileCount();
+    const RunResult r = runTool(arguments);
+    EXPECT_NE(r.exitCode, 0) << arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find("Error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << "expected '" << message << "' in:\n" << r.output;
+    EXPECT_EQ(fileCount(), before) << "a failed run left a file behind: " << arguments;
+    EXPECT_FALSE(fs::exists(p("out.pcd")));
+    EXPECT_FALSE(fs::exists(p("out.ply")));
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(DensifyCli, HelpListsTheOptions) {
+  const RunResult r = runTool("-h");
+  EXPECT_EQ(r.exitCode, 0);
+  for (const char* option : {"-calib", "-left", "-right", "-image_size", "-keep_organized", "-frame", "-max_depth",
+                             "-stride", "-no_occlusion_filter", "-disparity", "-color", "-alpha", "(default: 80)"}) {
+    EXPECT_NE(r.output.find(option), std::string::npos) << option;
+  }
+}
+
+TEST_F(DensifyCli, FusedRunWritesDenseColoredPcdAndDisparity) {
+  const RunResult r = runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft + " -right " + kRight +
+                              " -disparity " + p("d.png") + " -color " + p("c.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* line : {"Loading", "Projecting", "Matching (fused", "Reprojecting", "Saving"}) {
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << " in:\n" << r.output;
+  }
+  EXPECT_EQ(r.output.find("Error"), std::string::npos) << r.output;
+  EXPECT_EQ(fileCount(), 3u);
+  EXPECT_TRUE(hiddenFiles().empty()) << "temporary file left: " << hiddenFiles().front();
+
+  const std::string text = readText(p("out.pcd"));
+  EXPECT_NE(text.find("\nDATA binary_compressed"), std::string::npos) << text.substr(0, 300);
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZRGB>(p("out.pcd"), cloud), 0);
+  const std::size_t kept = keptPoints(r.output);
+  ASSERT_GT(kept, 1000u) << r.output;
+  EXPECT_GT(cloud.size(), 5 * kept) << "dense " << cloud.size() << " vs " << kept << " projected points";
+  EXPECT_EQ(cloud.height, 1u);
+  std::size_t nonFinite = 0;  // unorganized output: valid points only
+  for (const auto& q : cloud) nonFinite += std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) ? 0 : 1;
+  EXPECT_EQ(nonFinite, 0u);
+  // Colored from the left image: not one single color.
+  bool varied = false;
+  for (const auto& q : cloud) varied = varied || q.rgba != cloud.front().rgba;
+  EXPECT_TRUE(varied);
+
+  const cv::Mat disparity = cv::imread(p("d.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(disparity.type(), CV_16UC1);
+  EXPECT_EQ(disparity.cols, kWidth);
+  EXPECT_EQ(disparity.rows, kHeight);
+  EXPECT_GT(cv::countNonZero(disparity), kWidth * kHeight / 2);
+  const cv::Mat color = cv::imread(p("c.png"), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(color.type(), CV_8UC3);
+  EXPECT_EQ(color.cols, kWidth);
+}
+
+TEST_F(DensifyCli, LidarOnlyWithLeftImageWritesColoredPly) {
+  const RunResult r = runTool(kScan + " " + p("out.ply") + " -calib " + kCalib + " -left " + kLeft);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Matching (lidar-only"), std::string::npos) << r.output;
+  EXPECT_EQ(fileCount(), 1u);
+  EXPECT_TRUE(readText(p("out.ply")).rfind("ply\nformat binary_little_endian", 0) == 0);
+  pcl::PCLPointCloud2 blob;
+  ASSERT_EQ(pcl::io::loadPLYFile(p("out.ply"), blob), 0);
+  EXPECT_TRUE(hasField(blob, "rgb") || hasField(blob, "rgba")) << fieldNames(blob);
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  ASSERT_EQ(pcl::io::loadPLYFile<pcl::PointXYZRGB>(p("out.ply"), cloud), 0);
+  EXPECT_GT(cloud.size(), 5 * keptPoints(r.output));
+  bool varied = false;
+  for (const auto& q : cloud) varied = varied || q.rgba != cloud.front().rgba;
+  EXPECT_TRUE(varied);
+}
+
+TEST_F(DensifyCli, LidarOnlyWithoutImageWritesXyzInLidarFrame) {
+  const RunResult r = runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -image_size 1242x375");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Matching (lidar-only"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("lidar frame"), std::string::npos) << r.output;
+  EXPECT_EQ(fileCount(), 1u);
+  pcl::PCLPointCloud2 blob;
+  ASSERT_EQ(pcl::io::loadPCDFile(p("out.pcd"), blob), 0);
+  EXPECT_EQ(fieldNames(blob), "x y z ");
+  EXPECT_FALSE(hasField(blob, "rgb"));
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZ>(p("out.pcd"), cloud), 0);
+  EXPECT_GT(cloud.size(), 5 * keptPoints(r.output));
+  std::size_t notForward = 0;
+  for (const auto& q : cloud) notForward += isFinitePoint(q) && q.x > 0.0f ? 0 : 1;
+  EXPECT_EQ(notForward, 0u) << "LiDAR frame: x forward";
+}
+
+TEST_F(DensifyCli, KeepOrganizedInCameraFrameHasOnePointPerPixel) {
+  const RunResult r =
+      runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -image_size 1242x375 -keep_organized -frame camera");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("camera frame"), std::string::npos) << r.output;
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZ>(p("out.pcd"), cloud), 0);
+  EXPECT_EQ(cloud.width, static_cast<std::uint32_t>(kWidth));
+  EXPECT_EQ(cloud.height, static_cast<std::uint32_t>(kHeight));
+  std::size_t valid = 0;
+  std::size_t notInFront = 0;
+  for (const auto& q : cloud) {
+    if (!isFinitePoint(q)) continue;
+    ++valid;
+    notInFront += q.z > 0.0f ? 0 : 1;
+  }
+  EXPECT_GT(valid, 5 * keptPoints(r.output));
+  EXPECT_EQ(notInFront, 0u) << "camera frame: z forward";
+}
+
+TEST_F(DensifyCli, KeepOrganizedWithStrideTwoHalvesTheSizeRoundingUp) {
+  const RunResult r =
+      runTool(kScan + " " + p("out.ply") + " -calib " + kCalib + " -left " + kLeft + " -keep_organized -stride 2");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("621x188"), std::string::npos) << r.output;
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  ASSERT_EQ(pcl::io::loadPLYFile<pcl::PointXYZRGB>(p("out.ply"), cloud), 0);
+  EXPECT_EQ(cloud.width, static_cast<std::uint32_t>((kWidth + 1) / 2));
+  EXPECT_EQ(cloud.height, static_cast<std::uint32_t>((kHeight + 1) / 2));
+  EXPECT_EQ(cloud.size(), std::size_t{621} * 188);
+}
+
+TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
+  const std::string out = " " + p("out.pcd") + " ";
+  const std::string calib = " -calib " + kCalib;
+  const std::string pair = " -left " + kLeft + " -right " + kRight;
+
+  expectFailure(kScan + out, "-calib CALIB is required");
+  expectFailure(p("missing.bin") + out + calib + pair, "cannot read cloud '" + p("missing.bin") + "': no such file");
+
+  writeBytes("truncated.bin", std::string(100, '\0'));
+  expectFailure(p("truncated.bin") + out + calib + pair, "size 100 bytes is not a multiple of 16");
+  writeBytes("empty.bin", "");
+  expectFailure(p("empty.bin") + out + calib + pair, "'" + p("empty.bin") + "' has no points");
+
+  // A calibration with a malformed number: the message names the file and the key.
+  std::string calibText = readText(kCalib);
+  const std::size_t p2 = calibText.find("P2: 7.215377");
+  ASSERT_NE(p2, std::string::npos);
+  calibText.replace(p2, 12, "P2: 7.2x5377");
+  writeBytes("bad_calib.txt", calibText);
+  expectFailure(kScan + out + " -calib " + p("bad_calib.txt") + pair, p("bad_calib.txt"));
+  expectFailure(kScan + out + " -calib " + p("bad_calib.txt") + pair, "key 'P2'");
+  expectFailure(kScan + out + " -calib " + p("bad_calib.txt") + pair, "malformed number");
+  expectFailure(kScan + out + " -calib " + p("missing_calib.txt") + pair, "missing_calib.txt");
+
+  expectFailure(kScan + out + calib + " -left " + p("missing.png"), "cannot read image '" + p("missing.png") + "'");
+  expectFailure(kScan + out + calib + " -left " + kLeft + " -right " + p("missing.png"), "missing.png");
+  expectFailure(kScan + out + calib + " -right " + kRight, "-right needs -left");
+
+  ASSERT_TRUE(cv::imwrite(p("small_right.png"), cv::Mat(300, 1000, CV_8UC3, cv::Scalar(10, 20, 30))));
+  expectFailure(kScan + out + calib + " -left " + kLeft + " -right " + p("small_right.png"),
+                "the left image is 1242x375 but the right image is 1000x300");
+
+  // Images against the size the user or the calibration gives.
+  expectFailure(kScan + out + calib + pair + " -image_size 1000x300",
+                "the stereo pair is 1242x375 but the calibration is for 1000x300");
+  expectFailure(kScan + out + calib + " -left " + kLeft + " -image_size 1000x300",
+                "the color image is 1242x375 but the calibration is for 1000x300");
+  io::writeCalibrationYaml(p("calib.yaml"), io::readCalibration(kCalib, 1000, 300));
+  expectFailure(kScan + out + " -calib " + p("calib.yaml") + pair,
+                "the stereo pair is 1242x375 but the calibration is for 1000x300");
+
+  // Outputs: never an input, the right extension, no two outputs on one path.
+  writeCloud("front.pcd", /*behind=*/false);
+  const std::string frontBefore = readText(p("front.pcd"));
+  expectFailure(p("front.pcd") + " " + p("front.pcd") + calib + pair, "refusing to overwrite an input");
+  EXPECT_EQ(readText(p("front.pcd")), frontBefore);
+  expectFailure(kScan + " " + p("out.txt") + calib + pair, "must be a .pcd or .ply file");
+  EXPECT_FALSE(fs::exists(p("out.txt")));
+  ASSERT_NO_THROW(fs::copy_file(kLeft, p("left.png")));
+  const auto leftSize = fs::file_size(p("left.png"));
+  expectFailure(kScan + out + calib + " -left " + p("left.png") + " -disparity " + p("left.png"),
+                "refusing to overwrite an input");
+  EXPECT_EQ(fs::file_size(p("left.png")), leftSize);
+  expectFailure(kScan + out + calib + pair + " -disparity " + p("d.png") + " -color " + p("d.png"),
+                "is also another output");
+  expectFailure(kScan + out + calib + pair + " -disparity " + p("d.txt"), "must be a .png file");
+
+  // Parameters.
+  expectFailure(kScan + out + calib + pair + " -alpha 1.5", "alpha = 1.5");
+  expectFailure(kScan + out + calib + pair + " -paths 3", "paths = 3");
+  expectFailure(kScan + out + calib + pair + " -frame up", "option -frame: 'up' must be lidar or camera");
+  expectFailure(kScan + out + calib + pair + " -image_size 12x", "option -image_size: '12x' is not WIDTHxHEIGHT");
+  expectFailure(kScan + out + calib + pair + " -image_size 0x375", "must be positive");
+  expectFailure(kScan + out + calib + pair + " -stride 0", "option -stride: must be >= 1");
+  expectFailure(kScan + out + calib + pair + " -max_depth -1", "option -max_depth: must be >= 0");
+  expectFailure(kScan + " " + p("no_such_folder/out.pcd") + calib + pair, "the folder");
+  expectFailure(kScan + out + calib + pair + " -color " + p("no_such_folder/c.png"), "does not exist");
+  // -image_size may not contradict a calibration that has its own size (YAML, KITTI raw).
+  expectFailure(kScan + out + " -calib " + p("calib.yaml") + " -image_size 1242x375",
+                "-image_size 1242x375 disagrees with the calibration");
+  expectFailure(kScan + out + calib + pair + " -bogus 1", "unknown option -bogus");
+  expectFailure(kScan + out + calib + pair + " -alpha", "needs a value");
+  expectFailure(kScan + calib + pair, "expected INPUT and OUTPUT, got 1");
+
+  // LiDAR-only on an object-format calibration, no image and no -image_size: no size at all.
+  expectFailure(kScan + out + calib, "the calibration has no image size");
+
+  // Every point behind the camera (x < 0 in the KITTI LiDAR frame).
+  writeCloud("behind.pcd", /*behind=*/true);
+  expectFailure(p("behind.pcd") + out + calib + pair, "behind the camera");
+  expectFailure(p("behind.pcd") + " " + p("out.ply") + calib + " -image_size 1242x375", "50 behind the camera");
+}
+
+TEST_F(DensifyCli, FailedRunLeavesAnExistingOutputUntouched) {
+  writeCloud("behind.pcd", /*behind=*/true);
+  writeBytes("out.pcd", "precious, not a cloud\n");
+  const RunResult r = runTool(p("behind.pcd") + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft + " -right " +
+                              kRight + " -disparity " + p("d.png"));
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("behind the camera"), std::string::npos) << r.output;
+  EXPECT_EQ(readText(p("out.pcd")), "precious, not a cloud\n");
+  EXPECT_EQ(fileCount(), 2u) << "a failed run left a file behind";
+
+  // A failure after matching: every point is deeper than -max_depth, so there is nothing to write.
+  writeBytes("out.ply", "precious too\n");
+  const RunResult late =
+      runTool(kScan + " " + p("out.ply") + " -calib " + kCalib + " -image_size 1242x375 -max_depth 0.1");
+  EXPECT_NE(late.exitCode, 0) << late.output;
+  EXPECT_NE(late.output.find("Error: the dense cloud is empty"), std::string::npos) << late.output;
+  EXPECT_EQ(readText(p("out.ply")), "precious too\n");
+  EXPECT_EQ(fileCount(), 3u) << "a failed run left a file behind";
+  EXPECT_TRUE(hiddenFiles().empty());
+}
+
+}  // namespace
+}  // namespace lidar_sgm
