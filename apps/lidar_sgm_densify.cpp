@@ -122,11 +122,24 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   sgm.setMaxDepth(out.maxDepth);
   sgm.setStride(out.stride);
   const std::string frame = args.text("frame", "lidar");
+  // Matching sees the images' full depth (8 or 16 bit gray); the output's color is 8-bit.
   if (!right.empty()) {
-    sgm.setStereoPair(lidar_sgm::io::toPclImage(left), lidar_sgm::io::toPclImage(right));
-  } else if (!left.empty()) {
-    sgm.setColorImage(lidar_sgm::io::toPclImage(left));
+    const cv::Mat leftGray = lidar_sgm::io::readGrayImage(args.text("left", ""));
+    const cv::Mat rightGray = lidar_sgm::io::readGrayImage(args.text("right", ""));
+    if (leftGray.depth() != rightGray.depth()) {
+      throw std::invalid_argument("the left and right images differ in bit depth (8 vs 16 bit)");
+    }
+    if (leftGray.depth() == CV_16U) {
+      const auto l = lidar_sgm::io::grayView(leftGray).gray16;
+      const auto r = lidar_sgm::io::grayView(rightGray).gray16;
+      sgm.setStereoPair(l, r);
+    } else {
+      const auto l = lidar_sgm::io::grayView(leftGray).gray8;
+      const auto r = lidar_sgm::io::grayView(rightGray).gray8;
+      sgm.setStereoPair(l, r);
+    }
   }
+  if (!left.empty()) sgm.setColorImage(lidar_sgm::io::toPclImage(left));
 
   pcl::PointCloud<PointOutT> dense;
   sgm.filter(dense);

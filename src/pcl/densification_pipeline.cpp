@@ -24,7 +24,10 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 
 DensificationPipeline::DensificationPipeline() = default;
 
-void DensificationPipeline::setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right) {
+namespace {
+
+template <typename T>
+void checkPair(ImageView<const T> left, ImageView<const T> right) {
   if (left.empty() != right.empty()) {
     throw std::invalid_argument("setStereoPair: give both images or neither");
   }
@@ -32,13 +35,30 @@ void DensificationPipeline::setStereoPair(ImageView<const std::uint8_t> left, Im
     throw std::invalid_argument("setStereoPair: the left image is " + sizeText(left.width, left.height) +
                                 " but the right image is " + sizeText(right.width, right.height));
   }
-  if (left.empty()) {
-    left_ = Image<std::uint8_t>();
-    right_ = Image<std::uint8_t>();
-    return;
-  }
+}
+
+}  // namespace
+
+void DensificationPipeline::setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right) {
+  checkPair(left, right);
+  left_ = Image<std::uint8_t>();
+  right_ = Image<std::uint8_t>();
+  left16_ = Image<std::uint16_t>();
+  right16_ = Image<std::uint16_t>();
+  if (left.empty()) return;
   copyInto(left, left_);
   copyInto(right, right_);
+}
+
+void DensificationPipeline::setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right) {
+  checkPair(left, right);
+  left_ = Image<std::uint8_t>();
+  right_ = Image<std::uint8_t>();
+  left16_ = Image<std::uint16_t>();
+  right16_ = Image<std::uint16_t>();
+  if (left.empty()) return;
+  copyInto(left, left16_);
+  copyInto(right, right16_);
 }
 
 void DensificationPipeline::setColorImage(ImageView<const Rgb8> color) {
@@ -62,6 +82,7 @@ geometry::StereoCalibration DensificationPipeline::resolveCalibration() const {
     }
   };
   if (!left_.empty()) adopt(left_.width(), left_.height(), "stereo pair");
+  if (!left16_.empty()) adopt(left16_.width(), left16_.height(), "stereo pair");
   if (!color_.empty()) adopt(color_.width(), color_.height(), "color image");
   if (c.width == 0 && c.height == 0) {
     throw std::invalid_argument(
@@ -100,6 +121,9 @@ geometry::DenseCloud DensificationPipeline::run(const std::vector<Eigen::Vector3
   if (!left_.empty()) {
     left = left_.view();
     right = right_.view();
+  } else if (!left16_.empty()) {
+    left = left16_.view();
+    right = right16_.view();
   }
   matcher_->compute(left, right, &lidar, disparity_.view());
   lastMode_ = matcher_->lastMode();
@@ -122,6 +146,11 @@ bool DensificationPipeline::colorAt(int x, int y, Rgb8& out) const {
   }
   if (!left_.empty()) {
     const std::uint8_t g = left_(x, y);
+    out = Rgb8{g, g, g};
+    return true;
+  }
+  if (!left16_.empty()) {
+    const auto g = static_cast<std::uint8_t>(left16_(x, y) >> 8);
     out = Rgb8{g, g, g};
     return true;
   }

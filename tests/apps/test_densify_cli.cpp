@@ -25,6 +25,7 @@
 
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
+#include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -243,6 +244,30 @@ TEST_F(DensifyCli, KeepOrganizedWithStrideTwoHalvesTheSizeRoundingUp) {
   EXPECT_EQ(cloud.width, static_cast<std::uint32_t>((kWidth + 1) / 2));
   EXPECT_EQ(cloud.height, static_cast<std::uint32_t>((kHeight + 1) / 2));
   EXPECT_EQ(cloud.size(), std::size_t{621} * 188);
+}
+
+TEST_F(DensifyCli, SixteenBitPairMatchesAtFullDepth) {
+  // The sample pair as 16-bit gray, scaled by 257: the same order of intensities, hence the
+  // same census and the same disparities as the 8-bit gray the tool makes of the color pair.
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{kLeft, "left16.png"}, {kRight, "right16.png"}}) {
+    const cv::Mat gray = io::readGrayImage(from);
+    cv::Mat wide;
+    gray.convertTo(wide, CV_16U, 257.0);
+    ASSERT_TRUE(cv::imwrite(p(to), wide));
+  }
+  const RunResult eight = runTool(kScan + " " + p("a.pcd") + " -calib " + kCalib + " -left " + kLeft + " -right " +
+                                  kRight + " -disparity " + p("a.png"));
+  ASSERT_EQ(eight.exitCode, 0) << eight.output;
+  const RunResult sixteen = runTool(kScan + " " + p("b.pcd") + " -calib " + kCalib + " -left " + p("left16.png") +
+                                    " -right " + p("right16.png") + " -disparity " + p("b.png"));
+  ASSERT_EQ(sixteen.exitCode, 0) << sixteen.output;
+  const cv::Mat a = cv::imread(p("a.png"), cv::IMREAD_UNCHANGED);
+  const cv::Mat b = cv::imread(p("b.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(cv::countNonZero(a != b), 0);
+  // Mixed depths are refused.
+  expectFailure(kScan + " " + p("c.pcd") + " -calib " + kCalib + " -left " + p("left16.png") + " -right " + kRight,
+                "differ in bit depth");
 }
 
 TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -21,6 +22,7 @@
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/io/pcl_image.hpp"
+#include "lidar_sgm/pcl/impl/sgm_densification.hpp"
 #include "lidar_sgm/pcl/sgm_densification.hpp"
 
 namespace lidar_sgm {
@@ -244,3 +246,22 @@ TEST(KittiFramesLidarOnly, ColorImageOnlyKeepsLidarDepths) {
 
 }  // namespace
 }  // namespace lidar_sgm
+
+// The PCL class converts pcl::RGB images to gray itself; the tools read gray through OpenCV.
+// They must agree exactly, or the same pair would match differently by the way it was given.
+TEST(PclImageGray, EqualsOpenCvsBgrToGrayForEveryColor) {
+  cv::Mat bgr(4096, 4096, CV_8UC3);
+  for (int i = 0; i < 4096 * 4096; ++i) {
+    bgr.at<cv::Vec3b>(i / 4096, i % 4096) =
+        cv::Vec3b(static_cast<std::uint8_t>(i & 255), static_cast<std::uint8_t>((i >> 8) & 255),
+                  static_cast<std::uint8_t>((i >> 16) & 255));
+  }
+  cv::Mat gray;
+  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  long mismatches = 0;
+  for (int i = 0; i < 4096 * 4096; ++i) {
+    const cv::Vec3b c = bgr.at<cv::Vec3b>(i / 4096, i % 4096);
+    mismatches += lidar_sgm::detail::grayFromRgb(c[2], c[1], c[0]) != gray.at<std::uint8_t>(i / 4096, i % 4096);
+  }
+  EXPECT_EQ(mismatches, 0);
+}

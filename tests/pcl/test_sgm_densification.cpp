@@ -244,6 +244,24 @@ TEST(SGMDensification, FusedWithAStereoPairAsPclImagesOrGrayViewsAgrees) {
   for (int y = 0; y < c.height; ++y) {
     for (int x = 0; x < c.width; ++x) ASSERT_EQ(sgm.getDisparityImage()(x, y), disparityFromPcl(x, y));
   }
+  // A 16-bit pair (8-bit * 257: the same order of intensities, so the same census) matches
+  // identically, at full depth.
+  lidar_sgm::Image<std::uint16_t> left16(c.width, c.height), right16(c.width, c.height);
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) {
+      left16(x, y) = static_cast<std::uint16_t>(stereo.left(x, y) * 257);
+      right16(x, y) = static_cast<std::uint16_t>(stereo.right(x, y) * 257);
+    }
+  }
+  sgm.setStereoPair(left16.view(), right16.view());
+  pcl::PointCloud<pcl::PointXYZRGBA> from16;
+  sgm.filter(from16);
+  ASSERT_EQ(from16.size(), fromPcl.size()) << sgm.getLastError();
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) ASSERT_EQ(sgm.getDisparityImage()(x, y), disparityFromPcl(x, y));
+  }
+  EXPECT_EQ(from16[from16.size() / 2].r, fromPcl[fromPcl.size() / 2].r);  // gray color from the high byte
+
   // The left image colors the points (gray here: r = g = b).
   const auto& p = fromPcl[fromPcl.size() / 2];
   EXPECT_EQ(p.r, p.g);

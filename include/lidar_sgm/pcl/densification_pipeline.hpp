@@ -46,7 +46,9 @@ class DensificationPipeline {
 
   /// 8-bit gray rectified pair (copied). Empty views clear the pair (LiDAR-only mode).
   void setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right);
-  bool hasStereoPair() const { return !left_.empty(); }
+  /// 16-bit gray rectified pair (copied): census compares intensities, so nothing is lost to 8 bits.
+  void setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right);
+  bool hasStereoPair() const { return !left_.empty() || !left16_.empty(); }
   /// Color for the output points (copied); empty clears it.
   void setColorImage(ImageView<const Rgb8> color);
   bool hasColorImage() const { return !color_.empty(); }
@@ -94,6 +96,8 @@ class DensificationPipeline {
   geometry::ReprojectionOptions reprojectionOptions_;
   Image<std::uint8_t> left_;
   Image<std::uint8_t> right_;
+  Image<std::uint16_t> left16_;
+  Image<std::uint16_t> right16_;
   Image<Rgb8> color_;
   std::unique_ptr<Matcher> matcher_;
   Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for

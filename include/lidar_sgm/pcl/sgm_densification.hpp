@@ -63,6 +63,8 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   void setStereoPair(const ImageCloud& left, const ImageCloud& right);
   /// 8-bit gray rectified pair (copied).
   void setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right);
+  /// 16-bit gray rectified pair (copied); matched at full depth.
+  void setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right);
   /// Back to LiDAR-only mode.
   void clearStereoPair();
   /// The image that colors the output (organized, the rectified left camera's size); also

@@ -17,10 +17,11 @@ namespace lidar_sgm {
 
 namespace detail {
 
-/// Gray from RGB with OpenCV's fixed-point BT.601 weights (cvtColor BGR2GRAY: 0.299, 0.587,
-/// 0.114 scaled by 2^14), so a pair given as PCL images matches the same pair read by OpenCV.
+/// Gray from RGB with OpenCV's fixed-point BT.601 weights (cvtColor BGR2GRAY on 8-bit images:
+/// 0.299, 0.587, 0.114 scaled by 2^15), so a pair given as PCL images matches the same pair
+/// read by the tools (test_kitti_frames checks it against cv::cvtColor).
 inline std::uint8_t grayFromRgb(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
-  return static_cast<std::uint8_t>((r * 4899 + g * 9617 + b * 1868 + (1 << 13)) >> 14);
+  return static_cast<std::uint8_t>((r * 9798 + g * 19235 + b * 3735 + (1 << 14)) >> 15);
 }
 
 inline Image<std::uint8_t> grayImage(const pcl::PointCloud<pcl::RGB>& image) {
@@ -83,6 +84,18 @@ void SGMDensification<PointInT, PointOutT>::setStereoPair(ImageView<const std::u
     pendingError_ = e.what();
   }
   // A gray pair colors through the pipeline's gray fallback unless a color image is set.
+  if (!explicitColor_) pipeline_.setColorImage(ImageView<const Rgb8>());
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::setStereoPair(ImageView<const std::uint16_t> left,
+                                                         ImageView<const std::uint16_t> right) {
+  try {
+    pipeline_.setStereoPair(left, right);
+    pendingError_.clear();
+  } catch (const std::exception& e) {
+    pendingError_ = e.what();
+  }
   if (!explicitColor_) pipeline_.setColorImage(ImageView<const Rgb8>());
 }
 
