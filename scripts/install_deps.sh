@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev    # tests
   libeigen3-dev                # geometry
   libpcl-dev                   # the PCL class, cloud files, lidar_sgm_densify
+  nlohmann-json3-dev           # lidar_sgm_eval's JSON results
 )
 
 missing=()

@@ -1,9 +1,11 @@
 #include "lidar_sgm/core/matcher.hpp"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "backends/cpu_ref/cpu_ref_matcher.hpp"
+#include "lidar_sgm/core/stages.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -42,6 +44,10 @@ std::string toString(MatchMode mode) {
   return "unknown";
 }
 
+std::string toString(MatchMode mode, bool upCamera) {
+  return upCamera && mode != MatchMode::LidarOnly ? toString(mode) + " (3 cameras)" : toString(mode);
+}
+
 std::unique_ptr<Matcher> Matcher::create(Backend backend, const Parameters& params) {
   validate(params);
   switch (backend) {
@@ -63,8 +69,32 @@ void Matcher::setParameters(const Parameters& params) {
 
 void Matcher::compute(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
                       ImageView<std::int16_t> disparity) {
+  compute(left, right, VerticalView{}, lidar, disparity);
+}
+
+void Matcher::compute(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
+                      const LidarPoints* lidar, ImageView<std::int16_t> disparity) {
   const bool haveLidar = lidar != nullptr && !lidar->empty();
   const bool haveRight = !right.empty();
+  const bool haveUp = !vertical.up.empty();
+  if (!haveUp && vertical.baselineRatio != 0.0) {
+    std::ostringstream os;
+    os << "VerticalView has baselineRatio " << vertical.baselineRatio
+       << " but no up image: pass the up image, or an empty VerticalView (ratio 0) for two cameras";
+    throw std::invalid_argument(os.str());
+  }
+  if (haveUp && !haveRight) {
+    throw std::invalid_argument(
+        "an up image (third camera) needs a right image too: Triple-SGM adds the vertical pair to the "
+        "horizontal one; there is no up-only mode");
+  }
+  if (haveUp && (!std::isfinite(vertical.baselineRatio) || vertical.baselineRatio <= 0.0 ||
+                 vertical.baselineRatio > 4.0)) {
+    std::ostringstream os;
+    os << "invalid VerticalView baselineRatio = " << vertical.baselineRatio
+       << ": must be b_up / b, finite, in (0, 4]";
+    throw std::invalid_argument(os.str());
+  }
   MatchMode mode;
   if (haveRight) {
     mode = haveLidar ? MatchMode::Fused : MatchMode::StereoOnly;
@@ -98,6 +128,13 @@ void Matcher::compute(const GrayImageView& left, const GrayImageView& right, con
       throw std::invalid_argument("LiDAR points are for a " + sizeText(lidar->width(), lidar->height()) +
                                   " image but the stereo images are " + sizeText(width, height));
     }
+    if (haveUp && (vertical.up.width() != width || vertical.up.height() != height)) {
+      throw std::invalid_argument("left and up images differ in size: left " + sizeText(width, height) +
+                                  ", up " + sizeText(vertical.up.width(), vertical.up.height()));
+    }
+    if (haveUp && left.gray8.empty() != vertical.up.gray8.empty()) {
+      throw std::invalid_argument("left and up images differ in bit depth (one is 8-bit, the other 16-bit)");
+    }
   }
   if (disparity.empty() || disparity.width != width || disparity.height != height ||
       disparity.stride < width) {
@@ -105,8 +142,19 @@ void Matcher::compute(const GrayImageView& left, const GrayImageView& right, con
                                 " but the frame is " + sizeText(width, height));
   }
   timings_ = StageTimings{};
-  run(left, right, lidar, mode, disparity);
+  if (haveUp) {
+    runWithUpCamera(left, right, vertical.up, baselineRatio16(vertical.baselineRatio), lidar, mode, disparity);
+  } else {
+    run(left, right, lidar, mode, disparity);
+  }
   lastMode_ = mode;
+  lastUpCamera_ = haveUp;
+}
+
+void Matcher::runWithUpCamera(const GrayImageView&, const GrayImageView&, const GrayImageView&, int,
+                              const LidarPoints*, MatchMode, ImageView<std::int16_t>) {
+  throw std::runtime_error("backend " + toString(backend()) +
+                           " has no Triple-SGM (third camera) stages; use cpu_ref");
 }
 
 }  // namespace lidar_sgm

@@ -49,7 +49,12 @@ std::string describe(const StereoCalibration& c) {
   std::ostringstream s;
   s.precision(6);
   const Eigen::Vector3d t = c.T_cam_lidar.translation();
-  s << c.width << "x" << c.height << ", fx " << c.fx() << ", fy " << c.fy() << ", cx " << c.cx()
+  if (c.width == 0 && c.height == 0) {
+    s << "size from the images";
+  } else {
+    s << c.width << "x" << c.height;
+  }
+  s << ", fx " << c.fx() << ", fy " << c.fy() << ", cx " << c.cx()
     << ", cy " << c.cy() << ", baseline " << c.baseline << " m, t_cam_lidar (" << t.x() << ", "
     << t.y() << ", " << t.z() << ") m";
   return s.str();

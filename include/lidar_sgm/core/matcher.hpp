@@ -30,11 +30,15 @@ enum class MatchMode {
   Fused,       ///< left + right + LiDAR: C = alpha*C_L + (1-alpha)*C_S (Eq. 5)
 };
 std::string toString(MatchMode mode);
+/// toString(mode), with " (3 cameras)" appended when an up camera took part (Triple-SGM):
+/// "stereo-only (3 cameras)", "fused (3 cameras)". LiDAR-only never uses cameras for costs.
+std::string toString(MatchMode mode, bool upCamera);
 
 /// Wall-clock time of each stage of the last compute() call, in milliseconds.
 struct StageTimings {
   double census = 0;
   double censusCost = 0;
+  double verticalCensusCost = 0;  ///< Triple-SGM only: C_V and its combination with C_S
   double lidarCost = 0;
   double fuseCosts = 0;
   double aggregatePaths = 0;
@@ -42,7 +46,7 @@ struct StageTimings {
   double leftRightCheck = 0;
   double medianFilter = 0;
   double total() const {
-    return census + censusCost + lidarCost + fuseCosts + aggregatePaths + selectDisparity +
+    return census + censusCost + verticalCensusCost + lidarCost + fuseCosts + aggregatePaths + selectDisparity +
            leftRightCheck + medianFilter;
   }
 };
@@ -59,6 +63,16 @@ struct GrayImageView {
   bool empty() const { return gray8.empty() && gray16.empty(); }
   int width() const { return gray8.empty() ? gray16.width : gray8.width; }
   int height() const { return gray8.empty() ? gray16.height : gray8.height; }
+};
+
+/// Triple-SGM: a third camera `baselineRatio` * b above the left one (b: the stereo baseline),
+/// with the left camera's intrinsics and orientation, rectified with it vertically (same columns).
+/// A point of disparity d in the left/right pair appears d * baselineRatio rows lower in `up`.
+/// Default-constructed (empty `up`, ratio 0): no third camera.
+struct VerticalView {
+  GrayImageView up;
+  double baselineRatio = 0.0;  ///< b_up / b, in (0, 4]
+  bool empty() const { return up.empty(); }
 };
 
 /// Computes a dense disparity image for the left rectified camera.
@@ -95,7 +109,18 @@ class Matcher {
   void compute(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
                ImageView<std::int16_t> disparity);
 
+  /// Triple-SGM: as above, plus a third camera above the left one. A non-empty `up` replaces the
+  /// stereo cost C_S by C_S3 = (C_S + C_V + 1) >> 1 (C_V: census cost along the left/up columns)
+  /// in stereo-only and fused mode; it needs the right image (there is no up-only mode). `up` must
+  /// have the left image's size and bit depth, and baselineRatio must be finite, in (0, 4]. The
+  /// left-right check still compares the left and right views only (the up view is not checked).
+  /// An empty `up` (with ratio 0) is exactly the 4-argument compute().
+  void compute(const GrayImageView& left, const GrayImageView& right, const VerticalView& up,
+               const LidarPoints* lidar, ImageView<std::int16_t> disparity);
+
   MatchMode lastMode() const { return lastMode_; }
+  /// Whether the last frame was matched with the up camera too (Triple-SGM).
+  bool lastUsedUpCamera() const { return lastUpCamera_; }
   const StageTimings& lastTimings() const { return timings_; }
   /// 1 where a LiDAR point touched the pixel's 3x3 neighbourhood in the last frame.
   ImageView<const std::uint8_t> lidarSupport() const { return support_.view(); }
@@ -106,6 +131,12 @@ class Matcher {
   /// Runs every stage on validated inputs (sizes agree, mode decided).
   virtual void run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
                    MatchMode mode, ImageView<std::int16_t> disparity) = 0;
+  /// Triple-SGM: run() with the up camera (validated: same size and depth as left, mode StereoOnly
+  /// or Fused). `ratio16` = baselineRatio16(b_up / b). The default throws std::runtime_error: a
+  /// backend that has no Triple-SGM stages says so instead of silently ignoring the camera.
+  virtual void runWithUpCamera(const GrayImageView& left, const GrayImageView& right, const GrayImageView& up,
+                               int ratio16, const LidarPoints* lidar, MatchMode mode,
+                               ImageView<std::int16_t> disparity);
 
   Parameters params_;
   StageTimings timings_;
@@ -113,6 +144,7 @@ class Matcher {
 
  private:
   MatchMode lastMode_ = MatchMode::StereoOnly;
+  bool lastUpCamera_ = false;
 };
 
 }  // namespace lidar_sgm

@@ -5,6 +5,7 @@
 /// backend implements the same signatures in its own namespace and is tested against these
 /// stage by stage, bit for bit.
 
+#include <cmath>
 #include <cstdint>
 
 #include "lidar_sgm/core/cost_volume.hpp"
@@ -25,6 +26,19 @@ constexpr int kNoCounterpartCensusCost = kMaxCensusCost / 2;
 /// Eq. 5 in fixed point: alpha as an integer weight out of 256.
 inline int alphaWeight(float alpha) { return static_cast<int>(alpha * 256.0f + 0.5f); }
 
+/// Triple-SGM: the up camera's baseline over the stereo baseline, b_up / b, in fixed point
+/// (x65536, rounded). A point of horizontal disparity d has vertical disparity d * ratio16 / 65536.
+inline int baselineRatio16(double baselineRatio) {
+  return static_cast<int>(std::lround(baselineRatio * 65536.0));
+}
+
+/// Triple-SGM: the vertical disparity [rows] of the absolute horizontal disparity `d`,
+/// dv = (d * ratio16 + 32768) >> 16, i.e. d * b_up / b rounded half up (floor, also for d < 0).
+inline int verticalDisparity(int d, int ratio16) {
+  const int scaled = d * ratio16 + 32768;  // |d| <= 1024, ratio16 <= 4 * 65536: fits in 31 bits
+  return scaled >= 0 ? scaled / 65536 : -((-scaled + 65535) / 65536);  // floor division
+}
+
 /// What a pixel of a selected disparity image holds besides its x16 value.
 struct SelectedDisparity {
   ImageView<std::int16_t> disparity16;  ///< sub-pixel disparity x16, or kInvalidDisparity
@@ -44,6 +58,20 @@ void censusTransform(ImageView<const std::uint16_t> image, CensusType type,
 /// census at p - (minDisparity + d), for d in [0, numDisparities). Scaled to [0, kMaxCensusCost].
 void censusCost(ImageView<const std::uint64_t> leftCensus, ImageView<const std::uint64_t> rightCensus,
                 CensusType type, int minDisparity, MatchingCostVolume& cost);
+
+/// Triple-SGM vertical matching cost C_V(p, d): Hamming distance between the left census at
+/// p = (x, y) and the up census at (x, y + dv), dv = verticalDisparity(minDisparity + d, ratio16),
+/// for d in [0, cost.numDisparities()). The up camera sits above the left one, so the scene appears
+/// lower (larger y) in its image. Scaled as censusCost; kNoCounterpartCensusCost where y + dv
+/// lies outside the up image.
+void verticalCensusCost(ImageView<const std::uint64_t> leftCensus, ImageView<const std::uint64_t> upCensus,
+                        CensusType type, int ratio16, int minDisparity, MatchingCostVolume& cost);
+
+/// Triple-SGM camera cost C_S3 = (C_S + C_V + 1) >> 1: the rounded mean of the horizontal and
+/// vertical census costs, in the same [0, kMaxCensusCost] range as C_S, so that alpha, P1, P2 and
+/// lidarCostCap keep their meaning. C_S3 takes C_S's place in Eq. 5.
+void combineCameraCosts(const MatchingCostVolume& horizontal, const MatchingCostVolume& vertical,
+                        MatchingCostVolume& combined);
 
 /// LiDAR matching cost C_L(p, d) (Eq. 4): minimum over the points in p's pixel and its 8
 /// neighbours of table(16*(minDisparity + d) - d_P16). Pixels no point touches cost 0 for

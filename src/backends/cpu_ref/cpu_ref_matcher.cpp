@@ -33,6 +33,18 @@ void census(const GrayImageView& image, CensusType type, Image<std::uint64_t>& o
 
 void CpuRefMatcher::run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
                         MatchMode mode, ImageView<std::int16_t> disparity) {
+  runStages(left, right, nullptr, 0, lidar, mode, disparity);
+}
+
+void CpuRefMatcher::runWithUpCamera(const GrayImageView& left, const GrayImageView& right,
+                                    const GrayImageView& up, int ratio16, const LidarPoints* lidar,
+                                    MatchMode mode, ImageView<std::int16_t> disparity) {
+  runStages(left, right, &up, ratio16, lidar, mode, disparity);
+}
+
+void CpuRefMatcher::runStages(const GrayImageView& left, const GrayImageView& right, const GrayImageView* up,
+                              int ratio16, const LidarPoints* lidar, MatchMode mode,
+                              ImageView<std::int16_t> disparity) {
   const Parameters& p = params_;
   const int width = disparity.width;
   const int height = disparity.height;
@@ -41,13 +53,25 @@ void CpuRefMatcher::run(const GrayImageView& left, const GrayImageView& right, c
 
   support_.resize(width, height);
   support_.fill(0);
+  // The camera cost: C_S with two cameras, C_S3 = (C_S + C_V + 1) >> 1 with the up camera.
+  const MatchingCostVolume* cameraCost = &stereoCost_;
   if (mode != MatchMode::LidarOnly) {
     census(left, p.censusType, leftCensus_);
     census(right, p.censusType, rightCensus_);
+    if (up != nullptr) census(*up, p.censusType, upCensus_);
     timings_.census = clock.lapMs();
     stereoCost_.resize(width, height, D);
     cpu_ref::censusCost(leftCensus_.view(), rightCensus_.view(), p.censusType, p.minDisparity, stereoCost_);
     timings_.censusCost = clock.lapMs();
+    if (up != nullptr) {
+      verticalCost_.resize(width, height, D);
+      cpu_ref::verticalCensusCost(leftCensus_.view(), upCensus_.view(), p.censusType, ratio16, p.minDisparity,
+                                  verticalCost_);
+      cameraCost_.resize(width, height, D);
+      cpu_ref::combineCameraCosts(stereoCost_, verticalCost_, cameraCost_);
+      cameraCost = &cameraCost_;
+      timings_.verticalCensusCost = clock.lapMs();
+    }
   }
   if (mode != MatchMode::StereoOnly) {
     if (tableSigma_ != p.sigma || tableCap_ != p.lidarCostCap) {
@@ -59,10 +83,10 @@ void CpuRefMatcher::run(const GrayImageView& left, const GrayImageView& right, c
     cpu_ref::lidarCost(*lidar, table_, p.minDisparity, lidarCost_, support_.view());
     timings_.lidarCost = clock.lapMs();
   }
-  const MatchingCostVolume* cost = mode == MatchMode::StereoOnly ? &stereoCost_ : &lidarCost_;
+  const MatchingCostVolume* cost = mode == MatchMode::StereoOnly ? cameraCost : &lidarCost_;
   if (mode == MatchMode::Fused) {
     fusedCost_.resize(width, height, D);
-    cpu_ref::fuseCosts(lidarCost_, stereoCost_, support_.view(), alphaWeight(p.alpha),
+    cpu_ref::fuseCosts(lidarCost_, *cameraCost, support_.view(), alphaWeight(p.alpha),
                        p.stereoCostWithoutLidar, fusedCost_);
     cost = &fusedCost_;
     timings_.fuseCosts = clock.lapMs();
@@ -78,6 +102,8 @@ void CpuRefMatcher::run(const GrayImageView& left, const GrayImageView& right, c
   cpu_ref::selectDisparity(sum_, p.minDisparity, p.uniquenessRatio, p.subpixel, selected);
   timings_.selectDisparity = clock.lapMs();
 
+  // With the up camera too, the check still compares the left and right views (the right view's
+  // winners read diagonally from the same, C_S3-based, volume); the up view is not checked.
   if (p.lrCheck && mode != MatchMode::LidarOnly) {
     rightIndex_.resize(width, height);
     cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());

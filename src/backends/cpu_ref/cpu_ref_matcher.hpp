@@ -17,12 +17,22 @@ class CpuRefMatcher final : public Matcher {
  protected:
   void run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
            MatchMode mode, ImageView<std::int16_t> disparity) override;
+  void runWithUpCamera(const GrayImageView& left, const GrayImageView& right, const GrayImageView& up,
+                       int ratio16, const LidarPoints* lidar, MatchMode mode,
+                       ImageView<std::int16_t> disparity) override;
 
  private:
+  /// Both entry points: `up` null for two cameras (then ratio16 is unused).
+  void runStages(const GrayImageView& left, const GrayImageView& right, const GrayImageView* up, int ratio16,
+                 const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
+
   // Buffers kept between frames (resized only when the frame size changes).
   Image<std::uint64_t> leftCensus_;
   Image<std::uint64_t> rightCensus_;
-  MatchingCostVolume stereoCost_;
+  Image<std::uint64_t> upCensus_;      // Triple-SGM only
+  MatchingCostVolume stereoCost_;      // C_S (left/right)
+  MatchingCostVolume verticalCost_;    // C_V (left/up), Triple-SGM only
+  MatchingCostVolume cameraCost_;      // C_S3 = (C_S + C_V + 1) >> 1, Triple-SGM only
   MatchingCostVolume lidarCost_;
   MatchingCostVolume fusedCost_;
   AggregatedCostVolume sum_;

@@ -1,0 +1,226 @@
+#include "eval/report.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace lidar_sgm {
+namespace evaluation {
+namespace fs = std::filesystem;
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Markdown
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
+/// A '|' inside a cell would end it.
+std::string cell(const std::string& text) {
+  std::string escaped;
+  for (char c : text) {
+    if (c == '|') escaped += '\\';
+    escaped += c;
+  }
+  return escaped;
+}
+
+std::string frameName(const FrameResult& frame) {
+  return frame.dataset.empty() ? frame.frame : frame.dataset + "/" + frame.frame;
+}
+
+/// correct % | RMSE px | D1 % | density %: shares in percent with 2 decimals, RMSE with 3
+/// (sub-pixel differences between methods are in the third decimal).
+std::string metricCells(const DisparityMetrics& m) {
+  return fixed(100.0 * m.correct, 2) + " | " + fixed(m.rmse, 3) + " | " + fixed(100.0 * m.d1, 2) + " | " +
+         fixed(100.0 * m.density, 2);
+}
+
+constexpr const char* kMetricHeader = "correct % | RMSE px | D1 % | density %";
+constexpr const char* kMetricAlignment = "---: | ---: | ---: | ---:";
+
+void appendFrameTable(std::ostringstream& out, const ProtocolResult& result) {
+  out << "| frame | method | " << kMetricHeader << " |\n";
+  out << "| --- | --- | " << kMetricAlignment << " |\n";
+  for (const FrameResult& frame : result.frames) {
+    for (const MethodResult& method : frame.methods) {
+      out << "| " << cell(frameName(frame)) << " | " << cell(method.method) << " | " << metricCells(method.metrics)
+          << " |\n";
+    }
+  }
+  for (const auto& [method, medians] : methodMedians(result)) {
+    out << "| median | " << cell(method) << " | " << metricCells(medians.first) << " |\n";
+  }
+}
+
+void appendSweepTable(std::ostringstream& out, const std::string& name,
+                      const std::vector<std::pair<double, DisparityMetrics>>& points) {
+  out << "\nSweep: " << name << " (medians over frames)\n\n";
+  out << "| alpha | " << kMetricHeader << " |\n";
+  out << "| ---: | " << kMetricAlignment << " |\n";
+  for (const auto& [alpha, metrics] : points) out << "| " << fixed(alpha, 2) << " | " << metricCells(metrics) << " |\n";
+}
+
+// ---------------------------------------------------------------------------------------------
+// JSON
+
+nlohmann::json metricsJson(const DisparityMetrics& m) {
+  return {{"correct", m.correct},   {"rmse", m.rmse},         {"d1", m.d1},
+          {"d1_est", m.d1Est},      {"density", m.density},   {"gt_pixels", m.gtPixels},
+          {"estimated_pixels", m.estimatedPixels}};
+}
+
+nlohmann::json frameJson(const FrameResult& frame) {
+  nlohmann::json methods = nlohmann::json::array();
+  for (const MethodResult& method : frame.methods) {
+    nlohmann::json entry = metricsJson(method.metrics);
+    entry["method"] = method.method;
+    entry["ms"] = method.milliseconds;
+    methods.push_back(entry);
+  }
+  return {{"dataset", frame.dataset}, {"frame", frame.frame}, {"methods", methods}};
+}
+
+nlohmann::json protocolJson(const ProtocolResult& result) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (const FrameResult& frame : result.frames) frames.push_back(frameJson(frame));
+  nlohmann::json medians = nlohmann::json::object();
+  for (const auto& [method, medianPair] : methodMedians(result)) {
+    medians[method] = metricsJson(medianPair.first);
+    medians[method]["ms"] = medianPair.second;
+  }
+  nlohmann::json sweeps = nlohmann::json::object();
+  for (const auto& [name, points] : result.sweeps) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& [alpha, metrics] : points) {
+      nlohmann::json entry = metricsJson(metrics);
+      entry["alpha"] = alpha;
+      list.push_back(entry);
+    }
+    sweeps[name] = list;
+  }
+  return {{"protocol", result.protocol}, {"description", result.description}, {"frames", frames},
+          {"medians", medians},          {"sweeps", sweeps}};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Atomic write
+
+/// A hidden name beside `path` (same directory, so the rename is atomic), unique per process and
+/// call: dir/.name.tmpPID-N (the naming idea of src/io/atomic_file.cpp, plus a counter so threads
+/// writing the same path do not share a temporary).
+fs::path temporaryPathFor(const fs::path& path) {
+  static std::atomic<unsigned> counter{0};
+  fs::path temporary = path;
+  temporary.replace_filename("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "-" +
+                             std::to_string(counter++));
+  return temporary;
+}
+
+[[noreturn]] void failWrite(const std::string& path, const std::string& reason) {
+  throw std::runtime_error("cannot write '" + path + "': " + reason);
+}
+
+}  // namespace
+
+double medianOf(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t middle = values.size() / 2;
+  if (values.size() % 2 == 1) return values[middle];
+  return 0.5 * (values[middle - 1] + values[middle]);
+}
+
+DisparityMetrics medianOver(const std::vector<DisparityMetrics>& metrics) {
+  DisparityMetrics result;
+  if (metrics.empty()) return result;
+  const auto field = [&metrics](double DisparityMetrics::*member) {
+    std::vector<double> values;
+    for (const DisparityMetrics& m : metrics) values.push_back(m.*member);
+    return medianOf(values);
+  };
+  result.correct = field(&DisparityMetrics::correct);
+  result.rmse = field(&DisparityMetrics::rmse);
+  result.d1 = field(&DisparityMetrics::d1);
+  result.d1Est = field(&DisparityMetrics::d1Est);
+  result.density = field(&DisparityMetrics::density);
+  for (const DisparityMetrics& m : metrics) {
+    result.gtPixels += m.gtPixels;
+    result.estimatedPixels += m.estimatedPixels;
+  }
+  return result;
+}
+
+std::vector<std::pair<std::string, std::pair<DisparityMetrics, double>>> methodMedians(const ProtocolResult& result) {
+  std::vector<std::string> order;
+  std::vector<std::vector<DisparityMetrics>> metrics;
+  std::vector<std::vector<double>> milliseconds;
+  for (const FrameResult& frame : result.frames) {
+    for (const MethodResult& method : frame.methods) {
+      const auto found = std::find(order.begin(), order.end(), method.method);
+      const std::size_t index = static_cast<std::size_t>(found - order.begin());
+      if (found == order.end()) {
+        order.push_back(method.method);
+        metrics.emplace_back();
+        milliseconds.emplace_back();
+      }
+      metrics[index].push_back(method.metrics);
+      milliseconds[index].push_back(method.milliseconds);
+    }
+  }
+  std::vector<std::pair<std::string, std::pair<DisparityMetrics, double>>> medians;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    medians.push_back({order[i], {medianOver(metrics[i]), medianOf(milliseconds[i])}});
+  }
+  return medians;
+}
+
+std::string markdownTable(const ProtocolResult& result) {
+  std::ostringstream out;
+  appendFrameTable(out, result);
+  for (const auto& [name, points] : result.sweeps) appendSweepTable(out, name, points);
+  return out.str();
+}
+
+nlohmann::json toJson(const std::vector<ProtocolResult>& results) {
+  nlohmann::json protocols = nlohmann::json::array();
+  for (const ProtocolResult& result : results) protocols.push_back(protocolJson(result));
+  return {{"protocols", protocols}};
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text) {
+  fs::path target(path);
+  const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) failWrite(path, "directory '" + directory.string() + "' does not exist");
+  const fs::path temporary = temporaryPathFor(target);
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    if (!file) failWrite(path, "cannot create temporary file '" + temporary.string() + "'");
+    file.write(text.data(), static_cast<std::streamsize>(text.size()));
+    file.close();
+    if (!file) {
+      fs::remove(temporary, ec);
+      failWrite(path, "write failed");
+    }
+  }
+  fs::rename(temporary, target, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    failWrite(path, ec.message());
+  }
+}
+
+}  // namespace evaluation
+}  // namespace lidar_sgm

@@ -1,0 +1,139 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "eval/report.hpp"
+
+namespace lidar_sgm {
+namespace evaluation {
+namespace {
+namespace fs = std::filesystem;
+
+DisparityMetrics metrics(double correct, double rmse, double d1, double density, long gtPixels = 100) {
+  DisparityMetrics m;
+  m.correct = correct;
+  m.rmse = rmse;
+  m.d1 = d1;
+  m.d1Est = d1 / 2;
+  m.density = density;
+  m.gtPixels = gtPixels;
+  m.estimatedPixels = gtPixels / 2;
+  return m;
+}
+
+TEST(MedianOver, OddAndEvenCounts) {
+  const DisparityMetrics odd = medianOver({metrics(0.1, 1, 0.1, 0.1), metrics(0.3, 3, 0.3, 0.3), metrics(0.2, 2, 0.2, 0.2)});
+  EXPECT_DOUBLE_EQ(odd.correct, 0.2);
+  EXPECT_DOUBLE_EQ(odd.rmse, 2.0);
+  EXPECT_DOUBLE_EQ(odd.d1, 0.2);
+  EXPECT_DOUBLE_EQ(odd.d1Est, 0.1);
+  EXPECT_DOUBLE_EQ(odd.density, 0.2);
+  EXPECT_EQ(odd.gtPixels, 300);  // counts are summed
+  EXPECT_EQ(odd.estimatedPixels, 150);
+
+  const DisparityMetrics even =
+      medianOver({metrics(1, 1, 1, 1), metrics(2, 2, 2, 2), metrics(3, 3, 3, 3), metrics(4, 4, 4, 4)});
+  EXPECT_DOUBLE_EQ(even.correct, 2.5);  // mean of the two middle values
+  EXPECT_DOUBLE_EQ(even.rmse, 2.5);
+  EXPECT_DOUBLE_EQ(medianOf({4, 1, 3, 2}), 2.5);
+  EXPECT_DOUBLE_EQ(medianOf({1, 3, 2}), 2.0);
+  EXPECT_EQ(medianOver({}).gtPixels, 0);
+}
+
+/// Two frames x two methods, and one sweep.
+ProtocolResult tinyProtocol() {
+  ProtocolResult p;
+  p.protocol = "P1";
+  p.description = "KITTI 2015, LiDAR pixels excluded";
+  p.frames.push_back({"kitti2015", "000000",
+                      {{"fused", metrics(0.96123, 0.81234, 0.021, 0.98765), 12.5},
+                       {"sgbm", metrics(0.80, 1.25, 0.15, 0.90), 30.0}}});
+  p.frames.push_back({"kitti2015", "000001",
+                      {{"fused", metrics(0.94, 0.7, 0.03, 0.99), 13.5},
+                       {"sgbm", metrics(0.82, 1.35, 0.13, 0.92), 31.0}}});
+  p.sweeps.push_back({"alpha", {{0.0, metrics(0.9, 1.0, 0.05, 0.97)}, {0.5, metrics(0.95, 0.8, 0.03, 0.98)}}});
+  return p;
+}
+
+TEST(MarkdownTable, RowsPerFrameAndMethodThenMedians) {
+  const std::string table = markdownTable(tinyProtocol());
+  EXPECT_NE(table.find("| frame | method | correct % | RMSE px | D1 % | density % |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| kitti2015/000000 | fused | 96.12 | 0.812 | 2.10 | 98.77 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| kitti2015/000001 | sgbm | 82.00 | 1.350 | 13.00 | 92.00 |"), std::string::npos) << table;
+  // Medians of two frames: mean of both.
+  EXPECT_NE(table.find("| median | fused | 95.06 | 0.756 | 2.55 | 98.88 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| median | sgbm | 81.00 | 1.300 | 14.00 | 91.00 |"), std::string::npos) << table;
+  EXPECT_LT(table.find("| kitti2015/000001 |"), table.find("| median |"));  // medians come last
+  EXPECT_NE(table.find("| 0.50 | 95.00 | 0.800 | 3.00 | 98.00 |"), std::string::npos) << table;  // the sweep
+}
+
+TEST(ToJson, RoundTripsEveryFigure) {
+  const std::string text = toJson({tinyProtocol()}).dump(2);
+  const nlohmann::json parsed = nlohmann::json::parse(text);
+  const nlohmann::json& p1 = parsed.at("protocols").at(0);
+  EXPECT_EQ(p1.at("protocol"), "P1");
+  const nlohmann::json& fused = p1.at("frames").at(0).at("methods").at(0);
+  EXPECT_EQ(fused.at("method"), "fused");
+  EXPECT_DOUBLE_EQ(fused.at("correct").get<double>(), 0.96123);
+  EXPECT_DOUBLE_EQ(fused.at("d1_est").get<double>(), 0.0105);
+  EXPECT_EQ(fused.at("gt_pixels").get<long>(), 100);
+  EXPECT_DOUBLE_EQ(fused.at("ms").get<double>(), 12.5);
+  EXPECT_DOUBLE_EQ(p1.at("medians").at("sgbm").at("rmse").get<double>(), 1.3);
+  EXPECT_DOUBLE_EQ(p1.at("medians").at("fused").at("ms").get<double>(), 13.0);
+  EXPECT_EQ(p1.at("medians").at("sgbm").at("gt_pixels").get<long>(), 200);
+  EXPECT_DOUBLE_EQ(p1.at("sweeps").at("alpha").at(1).at("alpha").get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(p1.at("sweeps").at("alpha").at(1).at("correct").get<double>(), 0.95);
+}
+
+/// A fresh, empty directory for one test, removed afterwards.
+class ScratchDir : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("lidar_sgm_report_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(ScratchDir, WriteTextAtomicallyLeavesOnlyTheFile) {
+  const std::string path = (dir_ / "report.md").string();
+  writeTextAtomically(path, "old");
+  writeTextAtomically(path, "| a | b |\n");  // replaces
+  std::ifstream in(path);
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(content, "| a | b |\n");
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    ++entries;
+    EXPECT_EQ(entry.path().filename(), "report.md");
+  }
+  EXPECT_EQ(entries, 1);
+}
+
+TEST_F(ScratchDir, WriteTextAtomicallyRefusesAMissingDirectory) {
+  const std::string path = (dir_ / "missing" / "report.json").string();
+  try {
+    writeTextAtomically(path, "{}");
+    FAIL() << "expected an exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+}  // namespace
+}  // namespace evaluation
+}  // namespace lidar_sgm
