@@ -14,7 +14,7 @@ const std::set<std::string>& sgmValueOptions() {
 }
 
 const std::set<std::string>& sgmFlagOptions() {
-  static const std::set<std::string> flags{"no_lr_check", "stereo_cost_without_lidar"};
+  static const std::set<std::string> flags{"no_lr_check", "lr_check_with_lidar", "stereo_cost_without_lidar"};
   return flags;
 }
 
@@ -31,12 +31,13 @@ std::string sgmOptionsHelp() {
                 "  -p1 P1                   small-jump penalty (default: %d)\n"
                 "  -p2 P2                   large-jump penalty, > P1 (default: %d)\n"
                 "  -uniqueness U            uniqueness ratio [%%], 0 = off (default: %d)\n"
-                "  -no_lr_check             skip the left-right consistency check (default: check on)\n"
+                "  -no_lr_check             skip the left-right consistency check (default: on in stereo-only mode)\n"
+                "  -lr_check_with_lidar     also check in fused mode (default: off; fewer outliers, lower density)\n"
                 "  -lr_max_diff D           largest left-right difference [px] (default: %d)\n"
                 "  -median 0|3|5            median filter size, 0 = off (default: %d)\n"
                 "  -census 9x7|cs9x7        census window: full or centre-symmetric (default: 9x7)\n"
                 "  -stereo_cost_without_lidar  full C_S where no LiDAR point is (default: the paper's (1-alpha)*C_S)\n"
-                "  -lidar_coverage_rows R   LR check spares pixels with a LiDAR point within +-R rows (default: %d)\n"
+                "  -lidar_coverage_rows R   fused LR check spares pixels with a LiDAR point within +-R rows (default: %d)\n"
                 "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto)\n",
                 d.alpha, d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
                 d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows);
@@ -55,6 +56,7 @@ Parameters parametersFrom(const Arguments& args) {
   p.P2 = args.integer("p2", p.P2);
   p.uniquenessRatio = args.integer("uniqueness", p.uniquenessRatio);
   p.lrCheck = !args.has("no_lr_check");
+  p.lrCheckWithLidar = args.has("lr_check_with_lidar");
   p.disp12MaxDiff = args.integer("lr_max_diff", p.disp12MaxDiff);
   p.medianSize = args.integer("median", p.medianSize);
   p.stereoCostWithoutLidar = args.has("stereo_cost_without_lidar");

@@ -16,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/arguments.hpp"
+#include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "eval/methods.hpp"
 #include "eval/pictures.hpp"
@@ -41,9 +42,12 @@ void printHelp(const char* program) {
       "  -protocols LIST    comma-separated subset of P1,P2,P3 (default: P1,P2,P3)\n"
       "  -synth_frames N    synthetic frames per P3 set (default: 10, seeds 100..)\n"
       "  -synth_size WxH    synthetic frame size (default: 1242x375)\n"
+      "  -p3_sets LIST      comma-separated subset of clear64,rain64,clear128 (default: all three;\n"
+      "                     clear64 has the third camera for Triple-SGM)\n"
       "  -alpha_step S      alpha sweep step in (0, 1] (default: 0.1)\n"
       "  -threads N         frames evaluated in parallel (default: all cores; results do not depend on it)\n"
       "  -no_pictures       skip the per-frame pictures\n"
+      "  and every SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the LiDAR-SGM methods\n"
       "  -h                 this help\n",
       program);
 }
@@ -78,18 +82,19 @@ eval::DisparityMetrics score(const EvalFrame& f, const Image<std::int16_t>& d) {
   return eval::evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view());
 }
 
-FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, const std::vector<double>& alphas) {
+FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, const std::vector<double>& alphas,
+                  const Parameters& base) {
   FrameRun run;
   run.result.dataset = frame.dataset;
   run.result.frame = frame.name;
   for (const Method& m : methods) {
-    MethodOutput out = runMethod(m, frame);
+    MethodOutput out = runMethod(m, frame, base);
     run.result.methods.push_back({m.name(), score(frame, out.disparity), out.milliseconds});
     run.disparities[m.name()] = std::move(out.disparity);
   }
   for (double alpha : alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
-    MethodOutput out = runMethod(fused, frame);
+    MethodOutput out = runMethod(fused, frame, base);
     run.sweep.emplace_back(alpha, score(frame, out.disparity));
     if (std::abs(alpha - 0.7) < 1e-9) {
       run.result.methods.push_back({fused.name(), run.sweep.back().second, out.milliseconds});
@@ -123,11 +128,25 @@ void writePicture(const std::string& dir, const EvalFrame& f, const FrameRun& ru
                             "error, " + name + " (blue < 0.19 px ... red > 48 px, black: no GT)"));
   }
   io::writeImageAtomically(dir + "/" + slug(f.dataset + "_" + f.name) + ".png", stack(rows));
+
+  // The README's comparison: stereo-only against fused, disparity and error, without the input
+  // image (third-party frames stay out of the repository; only our results go in).
+  const auto stereo = run.disparities.find("stereo-only SGM");
+  const auto fused = run.disparities.find("LiDAR-SGM (alpha 0.7)");
+  if (stereo != run.disparities.end() && fused != run.disparities.end()) {
+    io::writeImageAtomically(
+        dir + "/" + slug(f.dataset + "_" + f.name) + "_stereo_vs_fused.png",
+        stack({labelled(io::colorizeDisparity(stereo->second.view(), f.numDisparities), "stereo-only SGM"),
+               labelled(errorMap(stereo->second.view(), f.groundTruth.view()), "stereo-only SGM: error"),
+               labelled(io::colorizeDisparity(fused->second.view(), f.numDisparities), "LiDAR-SGM (alpha 0.7)"),
+               labelled(errorMap(fused->second.view(), f.groundTruth.view()), "LiDAR-SGM (alpha 0.7): error")}));
+  }
 }
 
 /// Runs every frame of `group` on `threads` threads (each frame is independent, so the result
 /// does not depend on the thread count), then assembles the protocol result.
-ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, int threads, const std::string& pictures) {
+ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, int threads, const std::string& pictures,
+                        const Parameters& base) {
   std::vector<FrameRun> runs(group.frames.size());
   std::atomic<std::size_t> next{0};
   std::mutex printMutex;
@@ -136,7 +155,7 @@ ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, i
     for (std::size_t i = next++; i < group.frames.size(); i = next++) {
       try {
         apps::Timer timer;
-        runs[i] = runFrame(group.frames[i], group.methods, alphas);
+        runs[i] = runFrame(group.frames[i], group.methods, alphas, base);
         if (!pictures.empty()) writePicture(pictures, group.frames[i], runs[i]);
         std::lock_guard<std::mutex> lock(printMutex);
         std::printf("  %s / %s [done, %.0f ms]\n", group.frames[i].dataset.c_str(), group.frames[i].name.c_str(),
@@ -235,9 +254,12 @@ std::vector<Group> buildGroups(const apps::Arguments& args, const std::string& r
     if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2) {
       throw std::invalid_argument("option -synth_size: '" + size + "' is not WIDTHxHEIGHT");
     }
-    struct Variant { const char* name; bool rain; int beams; bool third; };
-    for (const Variant v : {Variant{"P3 clear 64 beams", false, 64, true}, Variant{"P3 rain 64 beams", true, 64, false},
-                            Variant{"P3 clear 128 beams", false, 128, false}}) {
+    struct Variant { const char* key; const char* name; bool rain; int beams; bool third; };
+    const std::string sets = "," + args.text("p3_sets", "clear64,rain64,clear128") + ",";
+    for (const Variant v : {Variant{"clear64", "P3 clear 64 beams", false, 64, true},
+                            Variant{"rain64", "P3 rain 64 beams", true, 64, false},
+                            Variant{"clear128", "P3 clear 128 beams", false, 128, false}}) {
+      if (sets.find(std::string(",") + v.key + ",") == std::string::npos) continue;
       P3Options o;
       o.frames = args.integer("synth_frames", 10);
       o.rain = v.rain;
@@ -262,15 +284,19 @@ std::vector<Group> buildGroups(const apps::Arguments& args, const std::string& r
 }
 
 int run(int argc, char** argv) {
-  const apps::Arguments args(argc, argv,
-                             {"data", "out", "protocols", "synth_frames", "synth_size", "alpha_step", "threads"},
-                             {"h", "help", "no_pictures"});
+  const apps::Arguments args(
+      argc, argv,
+      apps::joined(apps::sgmValueOptions(),
+                   {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step", "threads"}),
+      apps::joined(apps::sgmFlagOptions(), {"h", "help", "no_pictures"}));
   if (args.has("h") || args.has("help")) {
     printHelp(argv[0]);
     return 0;
   }
   const std::string root = args.text("data", LIDAR_SGM_DEFAULT_DATA_ROOT);
   const std::string out = args.text("out", "out/eval");
+  // The matcher parameters of every LiDAR-SGM method (alpha is the method's; numDisparities the frame's).
+  const Parameters base = apps::parametersFrom(args);
   const double step = args.number("alpha_step", 0.1);
   if (!(step > 0.0 && step <= 1.0)) throw std::invalid_argument("option -alpha_step: must be in (0, 1]");
   int threads = args.integer("threads", static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
@@ -300,9 +326,10 @@ int run(int argc, char** argv) {
     if (g.frames.empty()) continue;
     apps::Timer timer;
     std::printf("%s: %zu frames\n", g.name.c_str(), g.frames.size());
-    results.push_back(runGroup(g, alphas, threads, pictures));
+    results.push_back(runGroup(g, alphas, threads, pictures, base));
     io::writeImageAtomically(out + "/plots/alpha_sweep_" + slug(g.name) + ".png", sweepPlot(results.back()));
-    markdown += "\n" + markdownTable(results.back());
+    markdown += "\n## " + g.name + "\n\n" + g.description + ". Plot: `plots/alpha_sweep_" + slug(g.name) +
+                ".png`.\n\n" + markdownTable(results.back());
     std::printf("%s [done, %.0f ms]\n", g.name.c_str(), timer.elapsedMs());
   }
   writeTextAtomically(out + "/results.md", markdown);

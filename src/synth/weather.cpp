@@ -12,7 +12,7 @@ namespace {
 
 std::uint8_t toByte(double value) { return static_cast<std::uint8_t>(std::clamp(std::lround(value), 0L, 255L)); }
 
-constexpr double kNoiseSigma = 3.0;      // gray levels
+constexpr double kNoiseSigma = 2.0;      // gray levels
 constexpr double kStreakTarget = 235.0;  // a lit drop is brighter than most of the scene
 constexpr double kStreakOpacity = 0.3;
 
@@ -28,7 +28,7 @@ void addRainToImage(Image<Rgb8>& image, std::uint32_t seed) {
     }
   }
   const double slant = uniform(rng, 0.1, 0.3);  // wind: the same for every drop of the frame
-  const int streaks = image.width() * image.height() / 600;
+  const int streaks = image.width() * image.height() / 1200;
   for (int s = 0; s < streaks; ++s) {
     const double x0 = uniform(rng, 0.0, image.width());
     const double y0 = uniform(rng, 0.0, image.height());

@@ -133,3 +133,48 @@ TEST(Matcher, SixteenBitImagesMatchLikeEightBit) {
 
 }  // namespace
 }  // namespace lidar_sgm
+
+namespace lidar_sgm {
+namespace {
+
+int validPixels(const Image<std::int16_t>& d) {
+  int n = 0;
+  for (int y = 0; y < d.height(); ++y) {
+    for (int x = 0; x < d.width(); ++x) n += d(x, y) != kInvalidDisparity ? 1 : 0;
+  }
+  return n;
+}
+
+TEST(Matcher, FusedModeChecksLeftRightOnlyWhenAskedTo) {
+  // The right image's right half is replaced by unrelated noise, and the LiDAR covers the left
+  // half only: on the right half, matching is arbitrary and the left-right check finds
+  // inconsistent pixels.
+  test::SyntheticStereo s = test::makeStereo(96, 48, [](double, double) { return 10.0; }, 0, 4);
+  const test::SyntheticStereo other = test::makeStereo(96, 48, [](double, double) { return 10.0; }, 0, 99);
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 48; x < 96; ++x) s.right(x, y) = other.right(x, y);
+  }
+  std::vector<LidarSample> samples;
+  for (int y = 0; y < 48; y += 4) {
+    for (int x = 0; x < 48; x += 2) samples.push_back({x, y, 160});  // exact: 10 px
+  }
+  const LidarPoints lidar(96, 48, samples);
+  Parameters params;
+  params.numDisparities = 32;
+  Image<std::int16_t> byDefault(96, 48), noCheck(96, 48), checked(96, 48);
+  Matcher::create(Backend::CpuRef, params)->compute(s.left.view(), s.right.view(), &lidar, byDefault.view());
+  params.lrCheck = false;
+  Matcher::create(Backend::CpuRef, params)->compute(s.left.view(), s.right.view(), &lidar, noCheck.view());
+  params.lrCheck = true;
+  params.lrCheckWithLidar = true;
+  Matcher::create(Backend::CpuRef, params)->compute(s.left.view(), s.right.view(), &lidar, checked.view());
+  // The default (no check in fused mode) is bit-identical to switching the check off.
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 96; ++x) ASSERT_EQ(byDefault(x, y), noCheck(x, y)) << x << "," << y;
+  }
+  EXPECT_EQ(validPixels(byDefault), 96 * 48);
+  EXPECT_LT(validPixels(checked), validPixels(byDefault));
+}
+
+}  // namespace
+}  // namespace lidar_sgm

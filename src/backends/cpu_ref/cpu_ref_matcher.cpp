@@ -104,7 +104,8 @@ void CpuRefMatcher::runStages(const GrayImageView& left, const GrayImageView& ri
 
   // With the up camera too, the check still compares the left and right views (the right view's
   // winners read diagonally from the same, C_S3-based, volume); the up view is not checked.
-  if (p.lrCheck && mode != MatchMode::LidarOnly) {
+  const bool lrCheck = mode == MatchMode::StereoOnly ? p.lrCheck : mode == MatchMode::Fused && p.lrCheck && p.lrCheckWithLidar;
+  if (lrCheck) {
     rightIndex_.resize(width, height);
     cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());
     ImageView<const std::uint8_t> support;

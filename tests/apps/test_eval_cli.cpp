@@ -1,0 +1,116 @@
+// lidar_sgm_eval on a small subset, as a user runs it: the files it writes, and its figures
+// against the same frame matched and scored directly.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "eval/protocols.hpp"
+#include "lidar_sgm/core/matcher.hpp"
+#include "lidar_sgm/eval/metrics.hpp"
+#include "lidar_sgm/io/image_io.hpp"
+
+namespace lidar_sgm {
+namespace {
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode;
+  std::string output;
+};
+
+RunResult runTool(const std::string& arguments) {
+  const std::string command = std::string(LIDAR_SGM_EVAL_TOOL) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+class EvalCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("lidar_sgm_eval_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheMatchersOwn) {
+  const RunResult r = runTool("-protocols P3 -p3_sets clear64,rain64 -synth_frames 2 -synth_size 310x94 -alpha_step 0.5 "
+                              "-threads 2 -out " + dir_.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* file : {"results.md", "results.json", "plots/alpha_sweep_p3_clear_64_beams.png",
+                           "plots/alpha_sweep_p3_rain_64_beams.png", "pictures/synth_clear_64_3cam_000100.png",
+                           "pictures/synth_rain_64_000101.png"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir_ / file)) << file;
+  }
+  std::ifstream jsonFile(dir_ / "results.json");
+  const nlohmann::json json = nlohmann::json::parse(jsonFile);
+  ASSERT_EQ(json.at("protocols").size(), 2u);
+  const nlohmann::json& clear = json.at("protocols").at(0);
+  EXPECT_EQ(clear.at("protocol"), "P3 clear 64 beams");
+  ASSERT_EQ(clear.at("frames").size(), 2u);
+
+  // The same first frame, matched and scored here directly: the tool must report exactly this.
+  evaluation::P3Options options;
+  options.frames = 1;
+  options.thirdCamera = true;
+  options.width = 310;
+  options.height = 94;
+  const auto frames = evaluation::loadP3(options);
+  ASSERT_EQ(frames.size(), 1u);
+  const evaluation::EvalFrame& f = frames[0];
+  Parameters params;
+  params.numDisparities = f.numDisparities;
+  auto matcher = Matcher::create(Backend::Auto, params);
+  Image<std::int16_t> disparity(f.left.cols, f.left.rows);
+  matcher->compute(io::grayView(f.left), io::grayView(f.right), &f.lidar, disparity.view());
+  const eval::DisparityMetrics fused = eval::evaluateDisparity(disparity.view(), f.groundTruth.view(), f.exclude.view());
+
+  const nlohmann::json& frame = clear.at("frames").at(0);
+  EXPECT_EQ(frame.at("frame"), f.name);
+  bool found = false;
+  for (const auto& m : frame.at("methods")) {
+    if (m.at("method") != "LiDAR-SGM (alpha 0.7)") continue;
+    found = true;
+    EXPECT_DOUBLE_EQ(m.at("correct").get<double>(), fused.correct);
+    EXPECT_DOUBLE_EQ(m.at("rmse").get<double>(), fused.rmse);
+    EXPECT_DOUBLE_EQ(m.at("density").get<double>(), fused.density);
+  }
+  EXPECT_TRUE(found) << frame.dump(2);
+
+  std::ifstream md(dir_ / "results.md");
+  std::stringstream text;
+  text << md.rdbuf();
+  EXPECT_NE(text.str().find("## P3 rain 64 beams"), std::string::npos);
+  EXPECT_NE(text.str().find("3 cameras + LiDAR (alpha 0.7)"), std::string::npos);
+  EXPECT_NE(text.str().find("OpenCV StereoSGBM"), std::string::npos);
+  EXPECT_NE(text.str().find("IP-Basic"), std::string::npos);
+}
+
+TEST_F(EvalCli, BadOptionsFailWithAMessage) {
+  for (const auto& [args, message] : {std::pair<std::string, std::string>{"-alpha_step 0", "-alpha_step"},
+                                      {"-threads 0", "-threads"},
+                                      {"-synth_size 12", "-synth_size"},
+                                      {"-bogus", "unknown option"}}) {
+    const RunResult r = runTool(args + " -protocols P3 -out " + dir_.string());
+    EXPECT_NE(r.exitCode, 0) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace lidar_sgm
