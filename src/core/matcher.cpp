@@ -1,11 +1,14 @@
 #include "lidar_sgm/core/matcher.hpp"
 
+#include <chrono>
 #include <cmath>
+#include <utility>
 #include <sstream>
 #include <stdexcept>
 
-#include "backends/cpu_ref/cpu_ref_matcher.hpp"
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
+#include "core/backend_registry.hpp"
+#include "core/half_scale.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -33,7 +36,17 @@ Backend backendFromString(const std::string& name) {
   throw std::invalid_argument("unknown backend '" + name + "': must be auto, cpu_ref, cpu or cuda");
 }
 
-bool isAvailable(Backend backend) { return backend == Backend::Auto || backend == Backend::CpuRef; }
+bool isAvailable(Backend backend) {
+  if (backend == Backend::Auto) return true;
+  for (const detail::BackendEntry& entry : detail::builtinBackends()) {
+    if (entry.backend == backend) return true;
+  }
+  return false;
+}
+
+Backend resolve(Backend backend) {
+  return backend == Backend::Auto ? detail::builtinBackends().front().backend : backend;
+}
 
 std::string toString(MatchMode mode) {
   switch (mode) {
@@ -50,14 +63,14 @@ std::string toString(MatchMode mode, bool upCamera) {
 
 std::unique_ptr<Matcher> Matcher::create(Backend backend, const Parameters& params) {
   validate(params);
-  switch (backend) {
-    case Backend::Auto:
-    case Backend::CpuRef: return std::make_unique<CpuRefMatcher>(params);
-    case Backend::Cpu:
-    case Backend::Cuda: break;
+  const Backend wanted = resolve(backend);
+  std::string available;
+  for (const detail::BackendEntry& entry : detail::builtinBackends()) {
+    if (entry.backend == wanted) return entry.create(params);
+    available += toString(entry.backend) + ", ";
   }
-  throw std::runtime_error("backend " + toString(backend) +
-                           " is not built into this library; available: cpu_ref (or auto)");
+  throw std::runtime_error("backend " + toString(backend) + " is not built into this library; available: " +
+                           available + "auto");
 }
 
 Matcher::Matcher(const Parameters& params) : params_(params) { validate(params_); }
@@ -142,17 +155,86 @@ void Matcher::compute(const GrayImageView& left, const GrayImageView& right, con
                                 " but the frame is " + sizeText(width, height));
   }
   timings_ = StageTimings{};
-  if (haveUp) {
-    runWithUpCamera(left, right, vertical.up, baselineRatio16(vertical.baselineRatio), lidar, mode, disparity);
+  rescaleMs_ = 0;
+  if (params_.scale == 1.0f) {
+    dispatch(left, right, vertical, lidar, mode, disparity);
   } else {
-    run(left, right, lidar, mode, disparity);
+    computeAtHalfScale(left, right, vertical, lidar, mode, disparity);
   }
   lastMode_ = mode;
   lastUpCamera_ = haveUp;
 }
 
-void Matcher::runWithUpCamera(const GrayImageView&, const GrayImageView&, const GrayImageView&, int,
-                              const LidarPoints*, MatchMode, ImageView<std::int16_t>) {
+void Matcher::dispatch(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
+                       const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
+  Parameters matched = params_;
+  if (params_.scale != 1.0f) {
+    // The half-scale image sees every disparity halved: search half the range (Sec. IV-F).
+    matched.numDisparities = params_.numDisparities / 2;
+    matched.minDisparity = params_.minDisparity / 2;
+    matched.disp12MaxDiff = params_.disp12MaxDiff / 2;
+    matched.scale = 1.0f;
+  }
+  if (!vertical.up.empty()) {
+    runWithUpCamera(matched, left, right, vertical.up, baselineRatio16(vertical.baselineRatio), lidar, mode,
+                    disparity);
+  } else {
+    run(matched, left, right, lidar, mode, disparity);
+  }
+}
+
+namespace {
+
+// Scales a gray image of either depth down into the matching owned buffer.
+GrayImageView downscaled(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16) {
+  if (in.empty()) return {};
+  if (!in.gray8.empty()) {
+    downscaleHalf(in.gray8, buffer8);
+    return GrayImageView(static_cast<const Image<std::uint8_t>&>(buffer8).view());
+  }
+  downscaleHalf(in.gray16, buffer16);
+  return GrayImageView(static_cast<const Image<std::uint16_t>&>(buffer16).view());
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+void Matcher::computeAtHalfScale(const GrayImageView& left, const GrayImageView& right,
+                                 const VerticalView& vertical, const LidarPoints* lidar, MatchMode mode,
+                                 ImageView<std::int16_t> disparity) {
+  auto start = std::chrono::steady_clock::now();
+  const GrayImageView halfLeft = downscaled(left, half8_[0], half16_[0]);
+  const GrayImageView halfRight = downscaled(right, half8_[1], half16_[1]);
+  VerticalView halfVertical;
+  if (!vertical.up.empty()) {
+    halfVertical.up = downscaled(vertical.up, half8_[2], half16_[2]);
+    halfVertical.baselineRatio = vertical.baselineRatio;
+  }
+  LidarPoints halfLidar;
+  if (lidar != nullptr && !lidar->empty()) halfLidar = halveLidarPoints(*lidar);
+  halfDisparity_.resize(halfSize(disparity.width), halfSize(disparity.height));
+  rescaleMs_ = msSince(start);
+
+  dispatch(halfLeft, halfRight, halfVertical, halfLidar.empty() ? nullptr : &halfLidar, mode,
+           halfDisparity_.view());
+
+  start = std::chrono::steady_clock::now();
+  upscaleDisparity(static_cast<const Image<std::int16_t>&>(halfDisparity_).view(), disparity);
+  std::swap(halfSupport_, support_);  // the backend wrote the half-scale support
+  support_.resize(disparity.width, disparity.height);
+  if (halfSupport_.empty()) {
+    support_.fill(0);
+  } else {
+    upscaleMask(static_cast<const Image<std::uint8_t>&>(halfSupport_).view(), support_.view());
+  }
+  rescaleMs_ += msSince(start);
+}
+
+void Matcher::runWithUpCamera(const Parameters&, const GrayImageView&, const GrayImageView&, const GrayImageView&,
+                              int, const LidarPoints*, MatchMode, ImageView<std::int16_t>) {
   throw std::runtime_error("backend " + toString(backend()) +
                            " has no Triple-SGM (third camera) stages; use cpu_ref");
 }

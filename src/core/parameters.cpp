@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
+#include <algorithm>
 
 namespace lidar_sgm {
 namespace {
@@ -49,7 +51,26 @@ std::string validationError(const Parameters& p) {
   if (p.medianSize != 0 && p.medianSize != 3 && p.medianSize != 5) {
     return rangeError("medianSize", p.medianSize, "0 (off), 3 or 5");
   }
+  if (!(p.scale == 1.0f || p.scale == 0.5f)) {
+    return rangeError("scale", p.scale, "1 (full resolution) or 0.5 (half scale)");
+  }
+  if (p.scale == 0.5f && p.numDisparities % 32 != 0) {
+    return rangeError("numDisparities", p.numDisparities,
+                      "a multiple of 32 at scale 0.5 (half of it, a multiple of 16, is searched)");
+  }
+  if (p.scale == 0.5f && p.minDisparity % 2 != 0) {
+    return rangeError("minDisparity", p.minDisparity, "even at scale 0.5 (half of it is searched)");
+  }
+  if (p.threads < 0 || p.threads > 256) {
+    return rangeError("threads", p.threads, "in [0, 256] (0 = hardware threads)");
+  }
   return {};
+}
+
+int effectiveThreads(const Parameters& params) {
+  if (params.threads > 0) return params.threads;
+  const unsigned hardware = std::thread::hardware_concurrency();
+  return hardware == 0 ? 1 : static_cast<int>(std::min(hardware, 256u));
 }
 
 void validate(const Parameters& params) {

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace {

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace {

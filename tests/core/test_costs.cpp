@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace {

@@ -102,7 +102,15 @@ TEST(Backends, UnbuiltBackendsFailLoudly) {
     if (isAvailable(b)) continue;
     EXPECT_THROW(Matcher::create(b), std::runtime_error);
   }
-  EXPECT_EQ(Matcher::create(Backend::Auto)->backend(), Backend::CpuRef);
+  // Auto is the fastest backend this build has: cpu when Highway was found, else cpu_ref.
+  EXPECT_EQ(Matcher::create(Backend::Auto)->backend(), isAvailable(Backend::Cpu) ? Backend::Cpu : Backend::CpuRef);
+  try {
+    Matcher::create(Backend::Cuda);
+    if (!isAvailable(Backend::Cuda)) ADD_FAILURE() << "cuda is not built but was created";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("available: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cpu_ref"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace {

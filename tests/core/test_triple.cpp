@@ -13,7 +13,7 @@
 
 #include "common/synthetic_stereo.hpp"
 #include "lidar_sgm/core/matcher.hpp"
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 
 namespace lidar_sgm {

@@ -11,9 +11,9 @@
 namespace lidar_sgm {
 
 enum class Backend {
-  Auto,    ///< the fastest backend built into this library
-  CpuRef,  ///< naive reference loops: the specification
-  Cpu,     ///< SIMD + threads (not built yet)
+  Auto,    ///< the fastest backend built into this library (cuda > cpu > cpu_ref)
+  CpuRef,  ///< naive reference loops, single-threaded: the specification
+  Cpu,     ///< SIMD (runtime-dispatched) + threads, bit-identical to cpu_ref
   Cuda,    ///< GPU (not built yet)
 };
 
@@ -22,6 +22,11 @@ std::string toString(Backend backend);
 Backend backendFromString(const std::string& name);
 /// Whether this build of the library contains `backend` (Auto always is).
 bool isAvailable(Backend backend);
+/// The backend Backend::Auto stands for in this build (never Auto).
+Backend resolve(Backend backend);
+/// The instruction set the `cpu` backend dispatched to on this machine at run time ("AVX2",
+/// "AVX3" (AVX-512), "SSE4", "NEON", "EMU128" ...), or "none" when the backend is not built.
+std::string simdTarget();
 
 /// Which costs a frame was matched with; decided by the inputs given to compute().
 enum class MatchMode {
@@ -122,20 +127,26 @@ class Matcher {
   /// Whether the last frame was matched with the up camera too (Triple-SGM).
   bool lastUsedUpCamera() const { return lastUpCamera_; }
   const StageTimings& lastTimings() const { return timings_; }
-  /// 1 where a LiDAR point touched the pixel's 3x3 neighbourhood in the last frame.
+  /// 1 where a LiDAR point touched the pixel's 3x3 neighbourhood in the last frame (at the
+  /// frame's full resolution, also when it was matched at scale 0.5).
   ImageView<const std::uint8_t> lidarSupport() const { return support_.view(); }
+  /// Milliseconds spent scaling the inputs down and the disparity up in the last frame
+  /// (0 at scale 1); not part of lastTimings().total().
+  double lastRescaleMs() const { return rescaleMs_; }
 
  protected:
   explicit Matcher(const Parameters& params);
 
-  /// Runs every stage on validated inputs (sizes agree, mode decided).
-  virtual void run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
-                   MatchMode mode, ImageView<std::int16_t> disparity) = 0;
+  /// Runs every stage on validated inputs (sizes agree, mode decided) at the size of the
+  /// inputs. `params` are the parameters to match with: params_ at scale 1, the half-scale
+  /// search range at scale 0.5 (the backend never rescales). Writes support_ at that size.
+  virtual void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                   const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) = 0;
   /// Triple-SGM: run() with the up camera (validated: same size and depth as left, mode StereoOnly
   /// or Fused). `ratio16` = baselineRatio16(b_up / b). The default throws std::runtime_error: a
   /// backend that has no Triple-SGM stages says so instead of silently ignoring the camera.
-  virtual void runWithUpCamera(const GrayImageView& left, const GrayImageView& right, const GrayImageView& up,
-                               int ratio16, const LidarPoints* lidar, MatchMode mode,
+  virtual void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                               const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
                                ImageView<std::int16_t> disparity);
 
   Parameters params_;
@@ -143,8 +154,20 @@ class Matcher {
   Image<std::uint8_t> support_;
 
  private:
+  /// Runs the backend on (possibly half-scale) inputs.
+  void dispatch(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
+                const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
+  void computeAtHalfScale(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
+                          const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
+
   MatchMode lastMode_ = MatchMode::StereoOnly;
   bool lastUpCamera_ = false;
+  double rescaleMs_ = 0;
+  // Half-scale buffers, kept between frames like the backends' own.
+  Image<std::uint8_t> half8_[3];
+  Image<std::uint16_t> half16_[3];
+  Image<std::int16_t> halfDisparity_;
+  Image<std::uint8_t> halfSupport_;
 };
 
 }  // namespace lidar_sgm

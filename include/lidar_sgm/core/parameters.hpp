@@ -50,7 +50,20 @@ struct Parameters {
   int medianSize = 5;         ///< median filter window: 0 (off), 3 or 5 (the paper uses 5)
   bool subpixel = true;       ///< parabola fit through the best cost and its two neighbours
   CensusType censusType = CensusType::Census9x7;
+  /// Image scale the frame is matched at: 1 (full resolution) or 0.5 (the paper's half-scale
+  /// mode, Sec. IV-F). At 0.5 the images are box-averaged 2x2, the LiDAR disparities halved,
+  /// numDisparities/2 and minDisparity/2 searched (so numDisparities must be a multiple of 32 and
+  /// minDisparity even), and the disparity is brought back to full resolution (values x2, each
+  /// half-scale pixel covering its 2x2 block). P1, P2 and sigma keep their values, in the pixels
+  /// of the matched image.
+  float scale = 1.0f;
+  /// Worker threads of the fast backends: 0 = the machine's hardware threads. Never changes the
+  /// result (fixed partitions; every backend is bit-identical for any count). In [0, 256].
+  int threads = 0;
 };
+
+/// The number of threads `params.threads` asks for: the hardware's count when it is 0.
+int effectiveThreads(const Parameters& params);
 
 /// An empty string when `params` is valid; otherwise a message that names the first offending
 /// parameter, its value and its allowed range.

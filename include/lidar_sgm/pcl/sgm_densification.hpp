@@ -83,6 +83,15 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   int getP2() const { return pipeline_.parameters().P2; }
   void setPaths(int paths) { pipeline_.parameters().paths = paths; }
   int getPaths() const { return pipeline_.parameters().paths; }
+  /// Matching resolution: 1 (default) or 0.5, the paper's half-scale mode (about 4x less work;
+  /// numDisparities must then be a multiple of 32). The disparity image and an organized output
+  /// keep the full size either way. Checked in filter().
+  void setScale(float scale) { pipeline_.parameters().scale = scale; }
+  float getScale() const { return pipeline_.parameters().scale; }
+  /// Matcher threads, 0 = all hardware threads (default); in [0, 256], checked in filter(). The
+  /// result never depends on it. PCL's name, as pcl::NormalEstimationOMP::setNumberOfThreads.
+  void setNumberOfThreads(int threads) { pipeline_.parameters().threads = threads; }
+  int getNumberOfThreads() const { return pipeline_.parameters().threads; }
   /// Every matcher parameter at once (see lidar_sgm::Parameters); checked in filter().
   void setParameters(const Parameters& params) { pipeline_.setParameters(params); }
   const Parameters& getParameters() const { return pipeline_.parameters(); }

@@ -1,7 +1,7 @@
 // Census transform, reference backend: one comparison per bit, as written in the definition.
 #include <algorithm>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

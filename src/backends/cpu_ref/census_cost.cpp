@@ -1,7 +1,7 @@
 // Stereo matching cost C_S, reference backend: Hamming distance of census strings.
 #include <bitset>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

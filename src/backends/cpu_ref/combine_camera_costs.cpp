@@ -1,6 +1,6 @@
 // Triple-SGM camera cost C_S3, reference backend: the rounded mean of the horizontal (C_S) and
 // vertical (C_V) census costs.
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -31,21 +31,25 @@ void census(const GrayImageView& image, CensusType type, Image<std::uint64_t>& o
 
 }  // namespace
 
-void CpuRefMatcher::run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
-                        MatchMode mode, ImageView<std::int16_t> disparity) {
-  runStages(left, right, nullptr, 0, lidar, mode, disparity);
+std::unique_ptr<Matcher> createCpuRefMatcher(const Parameters& params) {
+  return std::make_unique<CpuRefMatcher>(params);
 }
 
-void CpuRefMatcher::runWithUpCamera(const GrayImageView& left, const GrayImageView& right,
-                                    const GrayImageView& up, int ratio16, const LidarPoints* lidar,
-                                    MatchMode mode, ImageView<std::int16_t> disparity) {
-  runStages(left, right, &up, ratio16, lidar, mode, disparity);
+void CpuRefMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                        const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
+  runStages(params, left, right, nullptr, 0, lidar, mode, disparity);
 }
 
-void CpuRefMatcher::runStages(const GrayImageView& left, const GrayImageView& right, const GrayImageView* up,
+void CpuRefMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left,
+                                    const GrayImageView& right, const GrayImageView& up, int ratio16,
+                                    const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
+  runStages(params, left, right, &up, ratio16, lidar, mode, disparity);
+}
+
+void CpuRefMatcher::runStages(const Parameters& params, const GrayImageView& left, const GrayImageView& right, const GrayImageView* up,
                               int ratio16, const LidarPoints* lidar, MatchMode mode,
                               ImageView<std::int16_t> disparity) {
-  const Parameters& p = params_;
+  const Parameters& p = params;
   const int width = disparity.width;
   const int height = disparity.height;
   const int D = p.numDisparities;

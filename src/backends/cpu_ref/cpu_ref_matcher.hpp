@@ -3,8 +3,8 @@
 
 #include <cstdint>
 
-#include "lidar_sgm/core/cost_volume.hpp"
-#include "lidar_sgm/core/lidar_cost_table.hpp"
+#include "backends/common/cost_volume.hpp"
+#include "backends/common/lidar_cost_table.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
 namespace lidar_sgm {
@@ -15,15 +15,15 @@ class CpuRefMatcher final : public Matcher {
   Backend backend() const override { return Backend::CpuRef; }
 
  protected:
-  void run(const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
-           MatchMode mode, ImageView<std::int16_t> disparity) override;
-  void runWithUpCamera(const GrayImageView& left, const GrayImageView& right, const GrayImageView& up,
-                       int ratio16, const LidarPoints* lidar, MatchMode mode,
+  void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) override;
+  void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                       const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
                        ImageView<std::int16_t> disparity) override;
 
  private:
   /// Both entry points: `up` null for two cameras (then ratio16 is unused).
-  void runStages(const GrayImageView& left, const GrayImageView& right, const GrayImageView* up, int ratio16,
+  void runStages(const Parameters& params, const GrayImageView& left, const GrayImageView& right, const GrayImageView* up, int ratio16,
                  const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
 
   // Buffers kept between frames (resized only when the frame size changes).

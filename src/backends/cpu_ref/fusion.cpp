@@ -1,5 +1,5 @@
 // Cost fusion (Eq. 5), reference backend.
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

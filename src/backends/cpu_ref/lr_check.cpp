@@ -1,7 +1,7 @@
 // Left-right consistency check, reference backend.
 #include <cstdlib>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

@@ -1,7 +1,7 @@
 // Disparity selection (Eq. 2), reference backend: winner-takes-all, uniqueness, parabola.
 #include <cstdlib>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

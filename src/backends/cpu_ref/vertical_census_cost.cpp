@@ -2,7 +2,7 @@
 // census and the census of the camera above it, along the image column.
 #include <bitset>
 
-#include "lidar_sgm/core/stages.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstdint>
 
-#include "lidar_sgm/core/cost_volume.hpp"
+#include "backends/common/cost_volume.hpp"
 #include "lidar_sgm/core/image.hpp"
-#include "lidar_sgm/core/lidar_cost_table.hpp"
+#include "backends/common/lidar_cost_table.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
 #include "lidar_sgm/core/parameters.hpp"
 

@@ -1,4 +1,4 @@
-#include "lidar_sgm/core/lidar_cost_table.hpp"
+#include "backends/common/lidar_cost_table.hpp"
 
 #include <cmath>
 

@@ -1,0 +1,156 @@
+// Stereo matching cost C_S, fast CPU backend: Hamming distances vectorised over disparities.
+// The right census row is stored as byte planes in reverse column order, so that for a left
+// pixel the right pixels x - minDisparity - d of consecutive d are consecutive bytes. Each of
+// the census string's bytes then costs one XOR and a 4-bit-table population count per 32
+// disparities (AVX2; 16 with SSE4/NEON), summed into the cost bytes directly.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "backends/cpu/census_cost.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "backends/cpu/cpu_kernels.hpp"
+#include "backends/cpu/cpu_stages.hpp"
+#include "backends/cpu/parallel.hpp"
+
+#include "backends/cpu/fusion-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace lidar_sgm {
+namespace cpu {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// One pixel's C_S for every d: per byte of the census string, XOR with the right pixels' bytes
+// and a 4-bit-table population count, summed. The left byte broadcasts are made once per pixel
+// and the loop over the bytes is unrolled, with two accumulators against one long add chain.
+template <int kBytes, class DU8>
+HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int D,
+                             std::uint8_t* out) {
+  using V = hn::Vec<DU8>;
+  V lb[kBytes];
+  for (int k = 0; k < kBytes; ++k) lb[k] = hn::Set(d, static_cast<std::uint8_t>(left >> (8 * k)));
+  const int N = static_cast<int>(hn::Lanes(d));
+  for (int i = 0; i < D; i += N) {
+    V sumEven = hn::Zero(d);
+    V sumOdd = hn::Zero(d);
+    for (int k = 0; k < kBytes; ++k) {
+      const V x = hn::Xor(lb[k], hn::LoadU(d, planes + static_cast<std::size_t>(k) * planeStride + i));
+      const V count = hn::PopulationCount(x);
+      if (k % 2 == 0) {
+        sumEven = hn::Add(sumEven, count);
+      } else {
+        sumOdd = hn::Add(sumOdd, count);
+      }
+    }
+    V sum = hn::Add(sumEven, sumOdd);
+    // The centre-symmetric string has half the bits (4 bytes); doubling keeps both types in [0, 62].
+    if (kBytes == 4) sum = hn::Add(sum, sum);
+    hn::StoreU(sum, d, out + i);
+  }
+}
+
+// With `fusion` set, Eq. 5 is applied to each pixel's C_S at once (see censusCostFusedRow).
+template <int kBytes>
+void CensusCostRowBytes(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
+                        int pad, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
+                        std::uint8_t* cost) {
+  const hn::CappedTag<std::uint8_t, 32> d32;
+  const hn::CappedTag<std::uint8_t, 16> d16;
+  const int N = static_cast<int>(hn::Lanes(d32));
+  for (int x = x0; x < x1; ++x) {
+    std::uint8_t* c = cost + static_cast<std::size_t>(x - x0) * D;
+    // Plane index of d = 0: the right pixel xr = x - minDisparity sits at width - 1 - xr.
+    const std::uint8_t* planes = rightPlanes + pad + (width - 1 - x + minDisparity);
+    const int whole = D / N * N;
+    HammingPixel<kBytes>(d32, leftRow[x], planes, planeStride, whole, c);
+    if (whole < D) HammingPixel<kBytes>(d16, leftRow[x], planes + whole, planeStride, D - whole, c + whole);
+    // Disparities whose right pixel lies outside the image have no counterpart.
+    const int dBegin = std::clamp(x - minDisparity - width + 1, 0, D);
+    const int dEnd = std::clamp(x - minDisparity + 1, dBegin, D);
+    if (dBegin > 0) std::memset(c, kNoCounterpartCensusCost, static_cast<std::size_t>(dBegin));
+    if (dEnd < D) std::memset(c + dEnd, kNoCounterpartCensusCost, static_cast<std::size_t>(D - dEnd));
+    if (fusion == nullptr) continue;
+    if (fusion->touched[x] != 0) {
+      FuseBytes(fusion->lidar + static_cast<std::size_t>(x - x0) * D, c, static_cast<std::size_t>(D),
+                fusion->alphaWeight256, c);
+    } else if (!fusion->stereoCostWithoutLidar) {
+      FuseBytes(nullptr, c, static_cast<std::size_t>(D), fusion->alphaWeight256, c);  // C_L = 0: no point near
+    }
+  }
+}
+
+void CensusCostRowImpl(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
+                       int pad, int bytes, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
+                       std::uint8_t* cost) {
+  if (bytes == 8) {
+    CensusCostRowBytes<8>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost);
+  } else {
+    CensusCostRowBytes<4>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace cpu
+}  // namespace lidar_sgm
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lidar_sgm {
+namespace cpu {
+
+HWY_EXPORT(CensusCostRowImpl);
+
+int censusPlanePad(int minDisparity, int numDisparities) {
+  // Loads reach from plane index minDisparity to width + minDisparity + D + 32 (a vector past).
+  return std::abs(minDisparity) + numDisparities + 64;
+}
+
+void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride) {
+  for (int k = 0; k < 8; ++k) {
+    std::uint8_t* plane = planes + static_cast<std::size_t>(k) * planeStride;
+    std::memset(plane, 0, static_cast<std::size_t>(pad));
+    std::memset(plane + pad + width, 0, planeStride - pad - static_cast<std::size_t>(width));
+    for (int xr = 0; xr < width; ++xr) plane[pad + width - 1 - xr] = static_cast<std::uint8_t>(row[xr] >> (8 * k));
+  }
+}
+
+void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
+                   CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
+                   std::uint8_t* cost) {
+  const int bytes = type == CensusType::Census9x7 ? 8 : 4;  // 62 or 31 bits
+  HWY_DYNAMIC_DISPATCH(CensusCostRowImpl)(leftRow, rightPlanes, planeStride, pad, bytes, width, x0, x1, minDisparity,
+                                          numDisparities, nullptr, cost);
+}
+
+void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
+                        int pad, CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
+                        const std::uint8_t* lidar, const std::uint8_t* touched, int alphaWeight256,
+                        bool stereoCostWithoutLidar, std::uint8_t* cost) {
+  const int bytes = type == CensusType::Census9x7 ? 8 : 4;
+  const CostFusion fusion{lidar, touched, alphaWeight256, stereoCostWithoutLidar};
+  HWY_DYNAMIC_DISPATCH(CensusCostRowImpl)(leftRow, rightPlanes, planeStride, pad, bytes, width, x0, x1, minDisparity,
+                                          numDisparities, &fusion, cost);
+}
+
+void censusCost(ImageView<const std::uint64_t> leftCensus, ImageView<const std::uint64_t> rightCensus,
+                CensusType type, int minDisparity, MatchingCostVolume& cost, int threads) {
+  const int width = leftCensus.width;
+  const int pad = censusPlanePad(minDisparity, cost.numDisparities());
+  const std::size_t planeStride = static_cast<std::size_t>(width) + 2 * static_cast<std::size_t>(pad);
+  parallelRanges(leftCensus.height, threads, [&](int y0, int y1) {
+    std::vector<std::uint8_t> planes(8 * planeStride);
+    for (int y = y0; y < y1; ++y) {
+      censusPlanes(rightCensus.row(y), width, pad, planes.data(), planeStride);
+      censusCostRow(leftCensus.row(y), planes.data(), planeStride, pad, type, width, 0, width, minDisparity,
+                    cost.numDisparities(), cost.at(0, y));
+    }
+  });
+}
+
+}  // namespace cpu
+}  // namespace lidar_sgm
+#endif  // HWY_ONCE

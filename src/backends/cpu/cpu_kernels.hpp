@@ -1,0 +1,135 @@
+#pragma once
+// Row kernels of the fast CPU backend, shared by its whole-volume stages (cpu_stages.hpp) and
+// its streaming matcher (cpu_matcher.cpp). Each is dispatched once per row (Highway picks the
+// widest instruction set the CPU has), never per pixel, so dispatch costs nothing measurable.
+//
+// Layouts. A cost row holds D = numDisparities bytes per pixel (disparity innermost, as the
+// volumes). A path row holds pathSlot(D) = D + 2 elements per pixel: [0] and [D + 1] are
+// sentinels (all ones, so that L(d -+ 1) + P1 saturates and never wins past the range ends) and
+// [1 .. D] the path costs L_r(p, d) of Eq. 1. D is a multiple of 16 (Parameters).
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "backends/common/stages.hpp"
+
+namespace lidar_sgm {
+namespace cpu {
+
+inline int pathSlot(int numDisparities) { return numDisparities + 2; }
+
+// census.cpp: one row of the census transform (cpu_ref's bit order, border pixels repeated).
+void censusTransformRow(ImageView<const std::uint8_t> image, CensusType type, int y, std::uint64_t* out);
+void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, int y, std::uint64_t* out);
+
+// census_cost.cpp: the right census row as 8 byte planes (plane k holds byte k), columns in
+// reverse order from index `pad`, zero-padded by `pad` on both sides (planeStride = width + 2 pad).
+int censusPlanePad(int minDisparity, int numDisparities);
+void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride);
+// C_S for pixels x0 .. x1-1 of one row into cost[(x - x0) * D + d].
+void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
+                   CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
+                   std::uint8_t* cost);
+
+// C_S fused at once with C_L (Eq. 5) as in fuseCosts: `lidar` holds C_L (D per pixel from x0)
+// of the pixels marked in `touched` (per pixel from x = 0); the others have C_L = 0, or keep C_S
+// with stereoCostWithoutLidar.
+struct CostFusion {
+  const std::uint8_t* lidar;
+  const std::uint8_t* touched;
+  int alphaWeight256;
+  bool stereoCostWithoutLidar;
+};
+void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
+                        int pad, CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
+                        const std::uint8_t* lidar, const std::uint8_t* touched, int alphaWeight256,
+                        bool stereoCostWithoutLidar, std::uint8_t* cost);
+
+// vertical_census_cost.cpp: Triple-SGM C_V for pixels x0 .. x1-1 of row y.
+void verticalCensusCostRow(const std::uint64_t* leftRow, ImageView<const std::uint64_t> upCensus, int y, int x0,
+                           int x1, int ratio16, int minDisparity, int numDisparities, int scale, std::uint8_t* cost);
+
+// combine_camera_costs.cpp: out = (h + v + 1) >> 1 over n bytes.
+void combineCameraCostRow(const std::uint8_t* horizontal, const std::uint8_t* vertical, std::size_t n,
+                          std::uint8_t* combined);
+
+// lidar_cost.cpp: C_L (Eq. 4) of pixel (x, y) into cost[0 .. D-1]; returns whether a point
+// touches the pixel (false: every cost is 0, no information).
+bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, int x, int y, int minDisparity,
+                    int numDisparities, std::uint8_t* cost);
+
+// lidar_cost.cpp: 1 where a point lies in the pixel's 3x3 neighbourhood (lidarCostPixel's
+// return value, for a whole row at once), else 0.
+void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched);
+
+// fusion.cpp: Eq. 5 over n bytes: (w * C_L + (256 - w) * C_S + 128) >> 8.
+void fuseCostRow(const std::uint8_t* lidar, const std::uint8_t* stereo, std::size_t n, int alphaWeight256,
+                 std::uint8_t* fused);
+
+// aggregation.cpp. Path rows hold uint8 when pathCostsFit8Bits(largest matching cost, P2),
+// else uint16 (see aggregation.cpp); each kernel has both.
+bool pathCostsFit8Bits(int maxCost, int P2);
+template <typename T>
+constexpr T pathSentinel() {
+  return static_cast<T>(~T{0});
+}
+/// A row of `width` path slots with their sentinels set (the kernels never write them).
+template <typename T>
+std::vector<T> pathRowBuffer(int width, int numDisparities) {
+  return std::vector<T>(static_cast<std::size_t>(width) * pathSlot(numDisparities), pathSentinel<T>());
+}
+// Eq. 1 along a vertical or diagonal path for pixels x0 .. x1-1 of one row. `previous` is the
+// path row of the previous image row on the path (nullptr: the path starts in this row) and
+// pixel x continues the path of previous pixel x - dx (outside the image: the path starts
+// here, L = C). Writes out[x * slot + 1 + d] and outMin[x] = min_d L. costRow holds pixels from
+// costX0 on.
+void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint8_t* previous,
+                         const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
+                         int P1, int P2, std::uint8_t* out, std::uint16_t* outMin);
+void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint16_t* previous,
+                         const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
+                         int P1, int P2, std::uint16_t* out, std::uint16_t* outMin);
+// Eq. 1 along the row itself: dx = +1 (left to right) or -1 (right to left), whole row.
+void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
+                       std::uint8_t* out);
+void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
+                       std::uint16_t* out);
+// The sum of `count` path rows for x0 .. x1-1 into a stored row (D per pixel, indexed from x0)
+// of either type (the other nullptr); the caller guarantees the sum fits.
+void storePathSum(const std::uint8_t* const* paths, int count, int x0, int x1, int numDisparities,
+                  std::uint8_t* stored8, std::uint16_t* stored16);
+void storePathSum(const std::uint16_t* const* paths, int count, int x0, int x1, int numDisparities,
+                  std::uint8_t* stored8, std::uint16_t* stored16);
+// sumRow[x * D + d] += path[x * slot + 1 + d] for x0 .. x1-1.
+void addPathRow(const std::uint8_t* path, int x0, int x1, int numDisparities, std::uint16_t* sumRow);
+void addPathRow(const std::uint16_t* path, int x0, int x1, int numDisparities, std::uint16_t* sumRow);
+
+// selection.cpp: Eq. 2 (winner-takes-all, uniqueness, parabola) for pixels x0 .. x1-1 from
+// total[(x - x0) * D + d].
+void selectRow(const std::uint16_t* total, int x0, int x1, int numDisparities, int minDisparity,
+               int uniquenessRatio, bool subpixel, std::int16_t* disparity16, std::int16_t* bestIndex);
+// sumPathRows and selectRow in one pass per pixel (total keeps the row's S for the LR check).
+void sumSelectRow(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
+                  const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
+                  int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
+                  std::int16_t* bestIndex);
+void sumSelectRow(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
+                  const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
+                  int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
+                  std::int16_t* bestIndex);
+
+// lr_check.cpp: the right view's winners of one row from its total S (D per pixel), with
+// rightIndexScratchSize() uint16 of scratch; and the check of one row.
+std::size_t rightIndexScratchSize(int width, int numDisparities, int minDisparity);
+void rightDisparityIndexRow(const std::uint16_t* totalRow, int width, int numDisparities, int minDisparity,
+                            std::uint16_t* scratch, std::int16_t* rightIndex);
+void leftRightCheckRow(SelectedDisparity disparity, ImageView<const std::int16_t> rightIndex,
+                       ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
+                       bool keepNoCounterpart, int y);
+
+// median.cpp: one output row of the median filter.
+void medianRow(ImageView<const std::int16_t> in, int size, int y, std::int16_t* out);
+
+}  // namespace cpu
+}  // namespace lidar_sgm

@@ -1,0 +1,411 @@
+#include "backends/cpu/cpu_matcher.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "backends/cpu/cpu_kernels.hpp"
+#include "backends/cpu/cpu_stages.hpp"
+#include "backends/cpu/parallel.hpp"
+
+namespace lidar_sgm {
+
+std::unique_ptr<Matcher> createCpuMatcher(const Parameters& params) {
+  return std::make_unique<cpu::CpuMatcher>(params);
+}
+
+namespace cpu {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// The paths of each sweep as (dx, dy): the previous pixel on the path is (x - dx, y - dy).
+struct Step {
+  int dx;
+};
+constexpr Step kUpward[3] = {{0}, {1}, {-1}};    // (0,-1), then with 8 paths (1,-1), (-1,-1)
+constexpr Step kDownward[3] = {{0}, {1}, {-1}};  // (0,1), then with 8 paths (1,1), (-1,1)
+
+template <typename T>
+void resizeKeep(std::vector<T>& v, std::size_t n) {
+  if (v.size() < n) v.resize(n);
+}
+
+}  // namespace
+
+struct CpuMatcher::Frame {
+  Parameters params;
+  MatchMode mode = MatchMode::StereoOnly;
+  const LidarPoints* lidar = nullptr;
+  bool up = false;
+  int ratio16 = 0;
+  int width = 0;
+  int height = 0;
+  int D = 0;
+  int scale = 1;         // census cost scale: 2 for the 31-bit centre-symmetric census
+  int alphaWeight = 0;
+  int verticalPaths = 1;  // per sweep: 1 with 4 paths, 3 with 8
+  bool store8 = true;
+  bool lrCheck = false;
+  int threads = 1;
+  bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
+  int planePad = 0;            // the right census planes' layout (census_cost.cpp)
+  std::size_t planeStride = 0;
+};
+
+struct CpuMatcher::Worker {
+  std::vector<std::uint8_t> cost;      // this thread's columns of a row: C
+  std::vector<std::uint8_t> stereo;    // C_S (fused mode)
+  std::vector<std::uint8_t> lidar;     // C_L (fused mode)
+  std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
+  std::vector<std::uint8_t> touched;   // per pixel: whether a LiDAR point touches it
+  std::vector<std::uint16_t> total;      // S of one whole row
+  std::vector<std::uint8_t> rightward;  // L of the left-to-right path along one row (slots, bytes)
+  std::vector<std::uint8_t> leftward;   // ... and of the right-to-left path
+  std::vector<std::uint16_t> rightScratch;  // the right view's winners of a row
+  double censusCostMs = 0;
+  double verticalCostMs = 0;
+  double lidarCostMs = 0;
+  double fuseMs = 0;
+  double selectMs = 0;
+};
+
+void CpuMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                     const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
+  runWithUpCamera(params, left, right, GrayImageView(), 0, lidar, mode, disparity);
+}
+
+void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                                 const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
+                                 ImageView<std::int16_t> disparity) {
+  const auto start = Clock::now();
+  Frame f;
+  f.params = params;
+  f.mode = mode;
+  f.lidar = mode == MatchMode::StereoOnly ? nullptr : lidar;
+  f.up = !up.empty() && mode != MatchMode::LidarOnly;
+  f.ratio16 = ratio16;
+  f.width = disparity.width;
+  f.height = disparity.height;
+  f.D = params.numDisparities;
+  f.scale = params.censusType == CensusType::Census9x7 ? 1 : 2;
+  f.alphaWeight = alphaWeight(params.alpha);
+  f.verticalPaths = params.paths == 8 ? 3 : 1;
+  f.threads = effectiveThreads(params);
+  // The largest matching cost, and so the largest path cost L <= C + P2 (Eq. 1).
+  const int maxCost = mode == MatchMode::StereoOnly ? kMaxCensusCost
+                      : mode == MatchMode::LidarOnly ? params.lidarCostCap
+                                                     : std::max(kMaxCensusCost, params.lidarCostCap);
+  f.paths8 = pathCostsFit8Bits(maxCost, params.P2);
+  f.store8 = f.verticalPaths * (maxCost + params.P2) <= 255;
+  f.lrCheck = mode == MatchMode::StereoOnly ? params.lrCheck
+                                            : mode == MatchMode::Fused && params.lrCheck && params.lrCheckWithLidar;
+
+  if (mode != MatchMode::LidarOnly) {
+    const auto census = [&](const GrayImageView& image, Image<std::uint64_t>& out) {
+      out.resize(image.width(), image.height());
+      if (!image.gray8.empty()) {
+        censusTransform(image.gray8, params.censusType, out.view(), f.threads);
+      } else {
+        censusTransform(image.gray16, params.censusType, out.view(), f.threads);
+      }
+    };
+    census(left, leftCensus_);
+    census(right, rightCensus_);
+    if (f.up) census(up, upCensus_);
+    f.planePad = censusPlanePad(params.minDisparity, f.D);
+    f.planeStride = static_cast<std::size_t>(f.width) + 2 * static_cast<std::size_t>(f.planePad);
+    resizeKeep(rightPlanes_, f.planeStride * 8 * f.height);
+    parallelRanges(f.height, f.threads, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) {
+        censusPlanes(rightCensus_.view().row(y), f.width, f.planePad,
+                     rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride, f.planeStride);
+      }
+    });
+  }
+  if (mode != MatchMode::StereoOnly && (tableSigma_ != params.sigma || tableCap_ != params.lidarCostCap)) {
+    table_ = LidarCostTable(params.sigma, params.lidarCostCap);
+    tableSigma_ = params.sigma;
+    tableCap_ = params.lidarCostCap;
+  }
+  if (mode != MatchMode::StereoOnly) {
+    touched_.resize(f.width, f.height);
+    parallelRanges(f.height, f.threads, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) lidarTouchedRow(*lidar, y, touched_.view().row(y));
+    });
+  }
+  timings_.census = msBetween(start, Clock::now());
+  runStages(f, disparity);
+}
+
+void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* cost, Worker& w) {
+  const auto n = static_cast<std::size_t>(x1 - x0) * f.D;
+  const Parameters& p = f.params;
+  auto t0 = Clock::now();
+  const auto lap = [&t0](double& ms) {
+    const auto t1 = Clock::now();
+    ms += msBetween(t0, t1);
+    t0 = t1;
+  };
+  // The LiDAR cost, streamed from the points around each pixel (no C_L volume). Most pixels
+  // have no point around them: C_L = 0 there, without looking for points.
+  std::uint8_t* lidar = f.mode == MatchMode::LidarOnly ? cost : w.lidar.data();
+  if (f.mode != MatchMode::StereoOnly) {
+    std::uint8_t* support = support_.view().row(y);
+    const std::uint8_t* touched = touched_.view().row(y);
+    for (int x = x0; x < x1; ++x) {
+      std::uint8_t* c = lidar + static_cast<std::size_t>(x - x0) * f.D;
+      if (touched[x] != 0) {
+        lidarCostPixel(*f.lidar, table_, x, y, p.minDisparity, f.D, c);
+      } else if (f.mode == MatchMode::LidarOnly || f.up) {
+        std::memset(c, 0, static_cast<std::size_t>(f.D));
+      }
+      support[x] = touched[x];
+    }
+    lap(w.lidarCostMs);
+  }
+  if (f.mode == MatchMode::LidarOnly) return;
+  const std::uint64_t* leftRow = leftCensus_.view().row(y);
+  const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
+  if (!f.up) {
+    // C_S, fused per pixel while it is in the L1 cache.
+    if (f.mode == MatchMode::Fused) {
+      censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity,
+                         f.D, lidar, touched_.view().row(y), f.alphaWeight, p.stereoCostWithoutLidar, cost);
+    } else {
+      censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity, f.D,
+                    cost);
+    }
+    lap(w.censusCostMs);
+    return;
+  }
+  // Triple-SGM: the camera cost C_S3 = (C_S + C_V + 1) >> 1 takes C_S's place in Eq. 5.
+  std::uint8_t* camera = f.mode == MatchMode::Fused ? w.stereo.data() : cost;
+  censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity, f.D, camera);
+  lap(w.censusCostMs);
+  verticalCensusCostRow(leftRow, upCensus_.view(), y, x0, x1, f.ratio16, p.minDisparity, f.D, f.scale,
+                        w.vertical.data());
+  combineCameraCostRow(camera, w.vertical.data(), n, camera);
+  lap(w.verticalCostMs);
+  if (f.mode != MatchMode::Fused) return;
+  fuseCostRow(lidar, camera, n, f.alphaWeight, cost);
+  if (p.stereoCostWithoutLidar) {
+    const std::uint8_t* touched = touched_.view().row(y);
+    for (int x = x0; x < x1; ++x) {
+      if (touched[x] != 0) continue;
+      const auto offset = static_cast<std::size_t>(x - x0) * f.D;
+      std::memcpy(cost + offset, camera + offset, static_cast<std::size_t>(f.D));
+    }
+  }
+  lap(w.fuseMs);
+}
+
+void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
+  const int W = f.width;
+  const int H = f.height;
+  const std::size_t slot = static_cast<std::size_t>(pathSlot(f.D));
+  support_.resize(W, H);
+  if (f.mode == MatchMode::StereoOnly) support_.fill(0);
+
+  // Buffers, grown only (no allocation per frame after the first of a size).
+  const std::size_t volume = static_cast<std::size_t>(W) * H * f.D;
+  if (f.store8) {
+    resizeKeep(stored8_, volume);
+  } else {
+    resizeKeep(stored16_, volume);
+  }
+  const std::size_t rowSlots = static_cast<std::size_t>(W) * slot;
+  const std::size_t element = f.paths8 ? 1 : 2;
+  const std::size_t rowBytes = rowSlots * element;
+  const std::size_t chunkRows = 2 * static_cast<std::size_t>(kChunkRows);  // two parities
+  // Path rows are filled with sentinels (all ones) once per layout: the kernels never write a
+  // slot's two ends.
+  const std::size_t layout = (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.D);
+  const bool newLayout = layout != pathLayout_;
+  pathLayout_ = layout;
+  if (newLayout) {
+    pathRows_.assign(6 * rowBytes, 0xFF);
+    chunkPaths_.assign(chunkRows * 3 * rowBytes, 0xFF);
+  }
+  resizeKeep(pathMins_, 6 * static_cast<std::size_t>(W));
+  resizeKeep(chunkCost_, chunkRows * W * f.D);
+  resizeKeep(chunkMins_, chunkRows * 3 * W);
+  const int threads = std::max(1, std::min(f.threads, W));
+  workers_.resize(static_cast<std::size_t>(threads));
+  const std::size_t partMax = (static_cast<std::size_t>(W) / threads + 1) * f.D;
+  for (Worker& w : workers_) {
+    resizeKeep(w.cost, partMax);
+    resizeKeep(w.stereo, partMax);
+    resizeKeep(w.lidar, partMax);
+    if (f.up) resizeKeep(w.vertical, partMax);
+    resizeKeep(w.total, static_cast<std::size_t>(W) * f.D);
+    if (f.lrCheck) resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.D, f.params.minDisparity));
+    if (newLayout || w.rightward.size() != rowBytes) w.rightward.assign(rowBytes, 0xFF);
+    if (newLayout || w.leftward.size() != rowBytes) w.leftward.assign(rowBytes, 0xFF);
+    w.censusCostMs = w.verticalCostMs = w.lidarCostMs = w.fuseMs = w.selectMs = 0;
+  }
+  rawDisparity_.resize(W, H);
+  bestIndex_.resize(W, H);
+  if (f.lrCheck) rightIndex_.resize(W, H);
+
+  Frame frame = f;
+  frame.threads = threads;
+  auto t0 = Clock::now();
+  if (f.paths8) {
+    sweepUp<std::uint8_t>(frame);
+    sweepDown<std::uint8_t>(frame);
+  } else {
+    sweepUp<std::uint16_t>(frame);
+    sweepDown<std::uint16_t>(frame);
+  }
+  const double sweeps = msBetween(t0, Clock::now());
+  // Worker 0's clocks split the sweeps' wall time into the stages it streamed.
+  const Worker& w0 = workers_[0];
+  timings_.censusCost = w0.censusCostMs;
+  timings_.verticalCensusCost = w0.verticalCostMs;
+  timings_.lidarCost = w0.lidarCostMs;
+  timings_.fuseCosts = w0.fuseMs;
+  timings_.selectDisparity = w0.selectMs;
+  timings_.aggregatePaths =
+      std::max(0.0, sweeps - w0.censusCostMs - w0.verticalCostMs - w0.lidarCostMs - w0.fuseMs - w0.selectMs);
+
+  t0 = Clock::now();
+  const SelectedDisparity selected{rawDisparity_.view(), bestIndex_.view()};
+  if (f.lrCheck) {
+    ImageView<const std::uint8_t> covered;
+    if (f.mode == MatchMode::Fused) {
+      coverage_.resize(W, H);
+      lidarCoverage(*f.lidar, f.params.lidarCoverageRows, coverage_.view(), threads);
+      covered = coverage_.view();
+    }
+    leftRightCheck(selected, rightIndex_.view(), covered, f.params.minDisparity, f.params.disp12MaxDiff,
+                   /*keepNoCounterpart=*/f.mode == MatchMode::Fused, threads);
+    timings_.leftRightCheck = msBetween(t0, Clock::now());
+    t0 = Clock::now();
+  }
+  medianFilter(rawDisparity_.view(), f.params.medianSize, disparity, threads);
+  timings_.medianFilter = msBetween(t0, Clock::now());
+}
+
+template <typename PathT>
+void CpuMatcher::sweepUp(const Frame& f) {
+  const int W = f.width;
+  const int H = f.height;
+  const int D = f.D;
+  const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
+  const Parameters& p = f.params;
+#pragma omp parallel num_threads(f.threads)
+  {
+    const int team = teamSize();
+    const int t = threadIndex();
+    const int x0 = partBegin(W, team, t);
+    const int x1 = partBegin(W, team, t + 1);
+    Worker& w = workers_[static_cast<std::size_t>(t)];
+    const PathT* paths[3];
+    for (int i = 0; i < H; ++i) {
+      const int y = H - 1 - i;
+      costRange(f, y, x0, x1, w.cost.data(), w);
+      for (int k = 0; k < f.verticalPaths; ++k) {
+        PathT* current = as<PathT>(pathRows_, (2 * k + i % 2) * rowSlots);
+        const PathT* previous = i == 0 ? nullptr : as<PathT>(pathRows_, (2 * k + (i + 1) % 2) * rowSlots);
+        std::uint16_t* currentMin = pathMins_.data() + static_cast<std::size_t>(2 * k + i % 2) * W;
+        const std::uint16_t* previousMin = pathMins_.data() + static_cast<std::size_t>(2 * k + (i + 1) % 2) * W;
+        pathRowFromPrevious(w.cost.data(), x0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
+                            current, currentMin);
+        paths[k] = current;
+      }
+      const std::size_t at = (static_cast<std::size_t>(y) * W + x0) * D;
+      storePathSum(paths, f.verticalPaths, x0, x1, D, f.store8 ? stored8_.data() + at : nullptr,
+                   f.store8 ? nullptr : stored16_.data() + at);
+      // Diagonal paths read the neighbouring columns of the previous row: wait for them.
+      if (f.verticalPaths > 1) {
+#pragma omp barrier
+      }
+    }
+  }
+}
+
+template <typename PathT>
+void CpuMatcher::sweepDown(const Frame& f) {
+  const int W = f.width;
+  const int H = f.height;
+  const int D = f.D;
+  const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
+  const std::size_t costRowSize = static_cast<std::size_t>(W) * D;
+  const Parameters& p = f.params;
+  // Chunk buffers of each parity: kChunkRows cost rows, then the downward paths' rows and minima.
+  const auto chunkCost = [&](int parity, int r) {
+    return chunkCost_.data() + (static_cast<std::size_t>(parity) * kChunkRows + r) * costRowSize;
+  };
+  const auto chunkPath = [&](int parity, int k, int r) {
+    return as<PathT>(chunkPaths_, ((static_cast<std::size_t>(parity) * 3 + k) * kChunkRows + r) * rowSlots);
+  };
+  const auto chunkMin = [&](int parity, int k, int r) {
+    return chunkMins_.data() + ((static_cast<std::size_t>(parity) * 3 + k) * kChunkRows + r) * W;
+  };
+#pragma omp parallel num_threads(f.threads)
+  {
+    const int team = teamSize();
+    const int t = threadIndex();
+    const int x0 = partBegin(W, team, t);
+    const int x1 = partBegin(W, team, t + 1);
+    Worker& w = workers_[static_cast<std::size_t>(t)];
+    const PathT* paths[5];
+    PathT* rightward = as<PathT>(w.rightward);
+    PathT* leftward = as<PathT>(w.leftward);
+    for (int chunk = 0; chunk * kChunkRows < H; ++chunk) {
+      const int yBegin = chunk * kChunkRows;
+      const int rows = std::min(kChunkRows, H - yBegin);
+      const int parity = chunk % 2;
+      // Stage 1, this thread's columns: the rows' costs and the downward (and diagonal) paths.
+      for (int r = 0; r < rows; ++r) {
+        const int y = yBegin + r;
+        costRange(f, y, x0, x1, chunkCost(parity, r) + static_cast<std::size_t>(x0) * D, w);
+        for (int k = 0; k < f.verticalPaths; ++k) {
+          const PathT* previous = y == 0 ? nullptr
+                                          : r == 0 ? chunkPath(1 - parity, k, kChunkRows - 1)
+                                                   : chunkPath(parity, k, r - 1);
+          const std::uint16_t* previousMin = r == 0 ? chunkMin(1 - parity, k, kChunkRows - 1) : chunkMin(parity, k, r - 1);
+          pathRowFromPrevious(chunkCost(parity, r), 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1,
+                              p.P2, chunkPath(parity, k, r), chunkMin(parity, k, r));
+        }
+        // Diagonal paths read the neighbouring columns of the previous row: wait for them.
+        if (f.verticalPaths > 1) {
+#pragma omp barrier
+        }
+      }
+#pragma omp barrier
+      // Stage 2, whole rows split among the threads: the horizontal paths need the row's every
+      // cost, then total S and the winners (and the right view's winners, which read S diagonally).
+      const int r0 = partBegin(rows, team, t);
+      const int r1 = partBegin(rows, team, t + 1);
+      for (int r = r0; r < r1; ++r) {
+        const int y = yBegin + r;
+        pathRowHorizontal(chunkCost(parity, r), 1, W, D, p.P1, p.P2, rightward);
+        pathRowHorizontal(chunkCost(parity, r), -1, W, D, p.P1, p.P2, leftward);
+        int count = 0;
+        for (int k = 0; k < f.verticalPaths; ++k) paths[count++] = chunkPath(parity, k, r);
+        paths[count++] = rightward;
+        paths[count++] = leftward;
+        const auto s0 = Clock::now();
+        const std::size_t at = static_cast<std::size_t>(y) * W * D;
+        sumSelectRow(paths, count, f.store8 ? stored8_.data() + at : nullptr, f.store8 ? nullptr : stored16_.data() + at,
+                     0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel, w.total.data(), rawDisparity_.view().row(y),
+                     bestIndex_.view().row(y));
+        if (f.lrCheck) {
+          rightDisparityIndexRow(w.total.data(), W, D, p.minDisparity, w.rightScratch.data(), rightIndex_.view().row(y));
+        }
+        w.selectMs += msBetween(s0, Clock::now());
+      }
+      // No barrier here: the next chunk fills the other parity's buffers, and the barrier after
+      // its stage 1 keeps this chunk's buffers alive until every thread has finished stage 2.
+    }
+  }
+}
+
+}  // namespace cpu
+}  // namespace lidar_sgm

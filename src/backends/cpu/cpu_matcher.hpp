@@ -1,0 +1,87 @@
+#pragma once
+// The fast CPU backend's matcher: the stages of cpu_ref, streamed in two sweeps over the image so
+// that neither the matching-cost volumes nor the per-path volumes are ever materialised.
+//
+//   census      rows in parallel, into two (three) census images.
+//   sweep up    bottom to top, columns split among threads: the cost C(p, .) of each pixel is
+//               computed on the fly (census cost, LiDAR cost from the points around p, fusion),
+//               the upward paths (1 of 4, 3 of 8) recurse in row buffers, and only their sum is
+//               stored: 8 bits per disparity when it provably fits (4 paths with P2 <= 255 - the
+//               largest cost: the default), else 16.
+//   sweep down  top to bottom in chunks of kChunkRows rows: first (columns split) C of the rows
+//               again - cheaper than storing and re-reading 60 MB on a bandwidth-starved
+//               machine - and the downward paths; then (rows split) the left-to-right and
+//               right-to-left paths, the total S (stored + the rows' paths), winner-takes-all +
+//               sub-pixel and, with the left-right check, the right view's winners. One barrier
+//               per chunk (per row only for the diagonals of 8 paths): lock step per row would
+//               stall whenever another process takes a core.
+//   LR check, median   rows in parallel.
+// Every sum is of the same non-negative integers in any order, so the result is cpu_ref's bit for
+// bit whatever the thread count.
+
+#include <cstdint>
+#include <vector>
+
+#include "backends/common/cost_volume.hpp"
+#include "backends/common/lidar_cost_table.hpp"
+#include "lidar_sgm/core/matcher.hpp"
+
+namespace lidar_sgm {
+namespace cpu {
+
+class CpuMatcher final : public Matcher {
+ public:
+  explicit CpuMatcher(const Parameters& params) : Matcher(params) {}
+  Backend backend() const override { return Backend::Cpu; }
+
+ protected:
+  void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) override;
+  void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                       const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
+                       ImageView<std::int16_t> disparity) override;
+
+ private:
+  struct Frame;  // the inputs of one compute(), resolved
+  struct Worker;  // one thread's scratch rows and stage clocks
+  void runStages(const Frame& frame, ImageView<std::int16_t> disparity);
+  template <typename PathT>
+  void sweepUp(const Frame& frame);
+  template <typename PathT>
+  void sweepDown(const Frame& frame);
+  /// Path buffers (bytes) viewed as path elements of type T.
+  template <typename T>
+  static T* as(std::vector<std::uint8_t>& bytes, std::size_t elementOffset = 0) {
+    return reinterpret_cast<T*>(bytes.data()) + elementOffset;
+  }
+  void costRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* cost, Worker& worker);
+
+  // Buffers kept between frames (resized only when the frame size changes).
+  Image<std::uint64_t> leftCensus_;
+  Image<std::uint64_t> rightCensus_;
+  Image<std::uint64_t> upCensus_;
+  std::vector<std::uint8_t> rightPlanes_;  // the right census as reversed byte planes, per row
+  std::vector<std::uint8_t> stored8_;    // sum of the upward paths, 8 bits per disparity
+  std::vector<std::uint16_t> stored16_;  // ... or 16 where 8 would not be enough
+  // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
+  // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
+  std::vector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
+  std::size_t pathLayout_ = 0;
+  std::vector<std::uint16_t> pathMins_;
+  static constexpr int kChunkRows = 8;
+  std::vector<std::uint8_t> chunkCost_;     // sweep down: C of a chunk's rows, two parities
+  std::vector<std::uint8_t> chunkPaths_;    // ... the downward paths' rows (slots)
+  std::vector<std::uint16_t> chunkMins_;    // ... and their minima
+  std::vector<Worker> workers_;
+  Image<std::int16_t> rawDisparity_;
+  Image<std::int16_t> bestIndex_;
+  Image<std::int16_t> rightIndex_;
+  Image<std::uint8_t> coverage_;
+  Image<std::uint8_t> touched_;  // 1 where a LiDAR point lies in the pixel's 3x3 neighbourhood
+  LidarCostTable table_;
+  float tableSigma_ = 0;
+  int tableCap_ = -1;
+};
+
+}  // namespace cpu
+}  // namespace lidar_sgm

@@ -1,0 +1,57 @@
+#pragma once
+// The fast CPU backend's stages: the signatures of cpu_ref's (backends/common/stages.hpp) plus
+// the number of worker threads. Each one is bit-identical to its cpu_ref twin for any `threads`
+// (fixed partitions of rows or columns; no reduction whose order depends on the thread count).
+//
+// SIMD comes from Highway with runtime dispatch (the same binary runs AVX-512, AVX2, SSE4 or
+// NEON code, whichever the CPU has); threads from OpenMP. The matcher (cpu_matcher.cpp) streams
+// the same row kernels (cpu_kernels.hpp) without materialising the cost volumes; these
+// whole-volume stages exist so that every stage can be tested against cpu_ref on its own.
+
+#include <cstdint>
+
+#include "backends/common/stages.hpp"
+
+namespace lidar_sgm {
+namespace cpu {
+
+void censusTransform(ImageView<const std::uint8_t> image, CensusType type, ImageView<std::uint64_t> census,
+                     int threads);
+void censusTransform(ImageView<const std::uint16_t> image, CensusType type, ImageView<std::uint64_t> census,
+                     int threads);
+
+void censusCost(ImageView<const std::uint64_t> leftCensus, ImageView<const std::uint64_t> rightCensus,
+                CensusType type, int minDisparity, MatchingCostVolume& cost, int threads);
+
+void verticalCensusCost(ImageView<const std::uint64_t> leftCensus, ImageView<const std::uint64_t> upCensus,
+                        CensusType type, int ratio16, int minDisparity, MatchingCostVolume& cost, int threads);
+
+void combineCameraCosts(const MatchingCostVolume& horizontal, const MatchingCostVolume& vertical,
+                        MatchingCostVolume& combined, int threads);
+
+void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDisparity, MatchingCostVolume& cost,
+               ImageView<std::uint8_t> support, int threads);
+
+void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> coverage, int threads);
+
+void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo,
+               ImageView<const std::uint8_t> support, int alphaWeight256, bool stereoCostWithoutLidar,
+               MatchingCostVolume& fused, int threads);
+
+void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum,
+                    int threads);
+
+void selectDisparity(const AggregatedCostVolume& sum, int minDisparity, int uniquenessRatio, bool subpixel,
+                     SelectedDisparity out, int threads);
+
+void rightDisparityIndex(const AggregatedCostVolume& sum, int minDisparity, ImageView<std::int16_t> rightIndex,
+                         int threads);
+
+void leftRightCheck(SelectedDisparity disparity, ImageView<const std::int16_t> rightIndex,
+                    ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
+                    bool keepNoCounterpart, int threads);
+
+void medianFilter(ImageView<const std::int16_t> in, int size, ImageView<std::int16_t> out, int threads);
+
+}  // namespace cpu
+}  // namespace lidar_sgm

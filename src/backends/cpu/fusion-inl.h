@@ -1,0 +1,51 @@
+// Eq. 5 on a run of cost bytes, for every Highway target: shared by fusion.cpp (the fuseCosts
+// stage) and census_cost.cpp (which fuses each pixel's C_S while it is still in the L1 cache).
+// Per-target header: included once per target, hence the toggled guard instead of #pragma once.
+#if defined(LIDAR_SGM_CPU_FUSION_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef LIDAR_SGM_CPU_FUSION_INL_H_
+#undef LIDAR_SGM_CPU_FUSION_INL_H_
+#else
+#define LIDAR_SGM_CPU_FUSION_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <cstddef>
+#include <cstdint>
+
+HWY_BEFORE_NAMESPACE();
+namespace lidar_sgm {
+namespace cpu {
+namespace HWY_NAMESPACE {
+
+// fused[i] = (w * lidar[i] + (256 - w) * stereo[i] + 128) >> 8, cpu_ref's weights and rounding;
+// lidar == nullptr stands for C_L = 0 (no point near the pixel). The sum fits 16 bits because
+// the weights add up to 256: at most 255 * 256 + 128. `fused` may be `stereo`.
+HWY_INLINE void FuseBytes(const std::uint8_t* lidar, const std::uint8_t* stereo, std::size_t n, int alphaWeight256,
+                          std::uint8_t* fused) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  const hn::CappedTag<std::uint16_t, 16> d16;
+  const hn::Rebind<std::uint8_t, decltype(d16)> d8;
+  const hn::Rebind<std::int16_t, decltype(d16)> di16;
+  const std::size_t N = hn::Lanes(d16);
+  const auto wL = hn::Set(d16, static_cast<std::uint16_t>(alphaWeight256));
+  const auto wS = hn::Set(d16, static_cast<std::uint16_t>(256 - alphaWeight256));
+  const auto half = hn::Set(d16, std::uint16_t{128});
+  std::size_t i = 0;
+  for (; i + N <= n; i += N) {
+    auto weighted = hn::Add(hn::Mul(hn::PromoteTo(d16, hn::LoadU(d8, stereo + i)), wS), half);
+    if (lidar != nullptr) weighted = hn::Add(weighted, hn::Mul(hn::PromoteTo(d16, hn::LoadU(d8, lidar + i)), wL));
+    hn::StoreU(hn::DemoteTo(d8, hn::BitCast(di16, hn::ShiftRight<8>(weighted))), d8, fused + i);
+  }
+  for (; i < n; ++i) {
+    const int cL = lidar != nullptr ? lidar[i] : 0;
+    fused[i] = static_cast<std::uint8_t>((alphaWeight256 * cL + (256 - alphaWeight256) * stereo[i] + 128) >> 8);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace cpu
+}  // namespace lidar_sgm
+HWY_AFTER_NAMESPACE();
+
+#endif  // LIDAR_SGM_CPU_FUSION_INL_H_

@@ -1,0 +1,129 @@
+// Left-right consistency check, fast CPU backend. The right view's winners (read diagonally from
+// the left volume, as OpenCV's SGBM does) are found by scanning the left pixels in order and
+// letting each one bid for the right pixels x - minDisparity - d of all its d at once: kept in
+// reverse column order those right pixels are consecutive, so a bid is a vector compare-select.
+// The check itself reads a handful of values per pixel, rows split among threads.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "backends/cpu/lr_check.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <vector>
+
+#include "backends/cpu/cpu_kernels.hpp"
+#include "backends/cpu/cpu_stages.hpp"
+#include "backends/cpu/parallel.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace lidar_sgm {
+namespace cpu {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D16 = hn::CappedTag<std::uint16_t, 16>;
+
+void RightDisparityIndexRowImpl(const std::uint16_t* totalRow, int width, int D, int minDisparity,
+                                std::uint16_t* scratch, std::int16_t* rightIndex) {
+  const D16 d16;
+  const int N = static_cast<int>(hn::Lanes(d16));
+  // Slot j = offset + (width - 1 - xr) holds right pixel xr's best cost and winner so far.
+  const int offset = D + std::abs(minDisparity) + N;
+  const std::size_t size = rightIndexScratchSize(width, D, minDisparity) / 2;
+  std::uint16_t* bestCost = scratch;
+  std::uint16_t* bestIndex = scratch + size;
+  std::fill(bestCost, bestCost + size, std::uint16_t{0xFFFF});  // above every S (<= 8 * 4255)
+  std::fill(bestIndex, bestIndex + size, std::uint16_t{0xFFFF});  // -1 as int16: no candidate
+  const auto iota = hn::Iota(d16, 0);
+  for (int x = 0; x < width; ++x) {
+    // Right pixel xr = x - minDisparity - d: slot offset + width - 1 - x + minDisparity + d.
+    const std::size_t base = static_cast<std::size_t>(offset + width - 1 - x + minDisparity);
+    const std::uint16_t* S = totalRow + static_cast<std::size_t>(x) * D;
+    for (int i = 0; i < D; i += N) {
+      const auto cost = hn::LoadU(d16, bestCost + base + i);
+      const auto bid = hn::LoadU(d16, S + i);
+      const auto better = hn::Lt(bid, cost);  // strictly: for a right pixel the smaller d bids first and wins ties
+      hn::StoreU(hn::IfThenElse(better, bid, cost), d16, bestCost + base + i);
+      const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
+      hn::StoreU(hn::IfThenElse(better, index, hn::LoadU(d16, bestIndex + base + i)), d16, bestIndex + base + i);
+    }
+  }
+  for (int xr = 0; xr < width; ++xr) {
+    rightIndex[xr] = static_cast<std::int16_t>(bestIndex[offset + width - 1 - xr]);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace cpu
+}  // namespace lidar_sgm
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lidar_sgm {
+namespace cpu {
+
+HWY_EXPORT(RightDisparityIndexRowImpl);
+
+std::size_t rightIndexScratchSize(int width, int numDisparities, int minDisparity) {
+  const std::size_t slots = static_cast<std::size_t>(width) + 2 * static_cast<std::size_t>(numDisparities) +
+                            2 * static_cast<std::size_t>(std::abs(minDisparity)) + 64;
+  return 2 * slots;
+}
+
+void rightDisparityIndexRow(const std::uint16_t* totalRow, int width, int numDisparities, int minDisparity,
+                            std::uint16_t* scratch, std::int16_t* rightIndex) {
+  HWY_DYNAMIC_DISPATCH(RightDisparityIndexRowImpl)(totalRow, width, numDisparities, minDisparity, scratch,
+                                                   rightIndex);
+}
+
+void rightDisparityIndex(const AggregatedCostVolume& sum, int minDisparity, ImageView<std::int16_t> rightIndex,
+                         int threads) {
+  parallelRanges(sum.height(), threads, [&](int y0, int y1) {
+    std::vector<std::uint16_t> scratch(rightIndexScratchSize(sum.width(), sum.numDisparities(), minDisparity));
+    for (int y = y0; y < y1; ++y) {
+      rightDisparityIndexRow(sum.at(0, y), sum.width(), sum.numDisparities(), minDisparity, scratch.data(),
+                             rightIndex.row(y));
+    }
+  });
+}
+
+void leftRightCheckRow(SelectedDisparity disparity, ImageView<const std::int16_t> rightIndex,
+                       ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
+                       bool keepNoCounterpart, int y) {
+  const int width = rightIndex.width;
+  std::int16_t* best = disparity.bestIndex.row(y);
+  std::int16_t* value = disparity.disparity16.row(y);
+  const std::int16_t* right = rightIndex.row(y);
+  const std::uint8_t* covered = support.empty() ? nullptr : support.row(y);
+  for (int x = 0; x < width; ++x) {
+    if (best[x] < 0) continue;
+    bool keep = true;
+    const int xr = x - (minDisparity + best[x]);
+    if (xr < 0 || xr >= width) {
+      keep = keepNoCounterpart;  // the right camera cannot see it: nothing to compare
+    } else if (covered != nullptr && covered[x] != 0) {
+      keep = true;  // a LiDAR point measured it
+    } else {
+      keep = right[xr] >= 0 && std::abs(right[xr] - best[x]) <= disp12MaxDiff;
+    }
+    if (!keep) {
+      value[x] = kInvalidDisparity;
+      best[x] = -1;
+    }
+  }
+}
+
+void leftRightCheck(SelectedDisparity disparity, ImageView<const std::int16_t> rightIndex,
+                    ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
+                    bool keepNoCounterpart, int threads) {
+  parallelRanges(rightIndex.height, threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      leftRightCheckRow(disparity, rightIndex, support, minDisparity, disp12MaxDiff, keepNoCounterpart, y);
+    }
+  });
+}
+
+}  // namespace cpu
+}  // namespace lidar_sgm
+#endif  // HWY_ONCE

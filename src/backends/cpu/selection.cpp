@@ -1,0 +1,179 @@
+// Disparity selection (Eq. 2), fast CPU backend: winner-takes-all vectorised over disparities,
+// then cpu_ref's uniqueness rule and parabola, in the same integer arithmetic.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "backends/cpu/selection.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <cstdlib>
+
+#include "backends/cpu/cpu_kernels.hpp"
+#include "backends/cpu/cpu_stages.hpp"
+#include "backends/cpu/parallel.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace lidar_sgm {
+namespace cpu {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D16 = hn::CappedTag<std::uint16_t, 16>;
+
+// The first d with the smallest S[d] (ties go to the smaller d, as in cpu_ref).
+HWY_INLINE int FirstMinimum(const std::uint16_t* HWY_RESTRICT S, int D) {
+  const D16 d16;
+  const int N = static_cast<int>(hn::Lanes(d16));
+  auto minimum = hn::LoadU(d16, S);
+  for (int i = N; i < D; i += N) minimum = hn::Min(minimum, hn::LoadU(d16, S + i));
+  const auto target = hn::MinOfLanes(d16, minimum);
+  for (int i = 0; i < D; i += N) {
+    const intptr_t lane = hn::FindFirstTrue(d16, hn::Eq(hn::LoadU(d16, S + i), target));
+    if (lane >= 0) return i + static_cast<int>(lane);
+  }
+  return 0;  // unreachable: the minimum is one of the lanes
+}
+
+// cpu_ref's selection rules for one pixel whose winner is known.
+HWY_INLINE void SelectPixel(const std::uint16_t* HWY_RESTRICT S, int best, int x, int D, int minDisparity,
+                            int uniquenessRatio, bool subpixel, std::int16_t* disparity16,
+                            std::int16_t* bestIndex) {
+  bool unique = true;
+  if (uniquenessRatio > 0) {
+    // OpenCV's rule: every cost farther than 1 px from the winner must exceed it by the ratio.
+    for (int d = 0; d < D && unique; ++d) {
+      if (std::abs(d - best) > 1 && S[d] * (100 - uniquenessRatio) < S[best] * 100) unique = false;
+    }
+  }
+  if (!unique) {
+    disparity16[x] = kInvalidDisparity;
+    bestIndex[x] = -1;
+    return;
+  }
+  int offset16 = 0;
+  if (subpixel && best > 0 && best < D - 1) {
+    // Vertex of the parabola through (best-1, best, best+1), rounded half away from zero.
+    const int before = S[best - 1];
+    const int after = S[best + 1];
+    const int curvature = before + after - 2 * S[best];
+    if (curvature > 0) {
+      const int numerator = (before - after) * kDisparityScale;
+      const int denominator = 2 * curvature;
+      const int half = denominator / 2;
+      offset16 = numerator >= 0 ? (numerator + half) / denominator : -((-numerator + half) / denominator);
+    }
+  }
+  disparity16[x] = static_cast<std::int16_t>((minDisparity + best) * kDisparityScale + offset16);
+  bestIndex[x] = static_cast<std::int16_t>(best);
+}
+
+void SelectRowImpl(const std::uint16_t* total, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
+                   bool subpixel, std::int16_t* disparity16, std::int16_t* bestIndex) {
+  for (int x = x0; x < x1; ++x) {
+    const std::uint16_t* S = total + static_cast<std::size_t>(x - x0) * D;
+    SelectPixel(S, FirstMinimum(S, D), x, D, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex);
+  }
+}
+
+template <typename T>
+HWY_INLINE hn::Vec<D16> LoadAsU16(const T* p) {
+  const D16 d16;
+  if constexpr (sizeof(T) == 1) {
+    return hn::PromoteTo(d16, hn::LoadU(hn::Rebind<std::uint8_t, D16>(), p));
+  } else {
+    return hn::LoadU(d16, p);
+  }
+}
+
+// Eq. 2 straight from the paths: per pixel the sum over paths (written to total, which stays in
+// the L1 cache for the winner search), its minimum on the fly, then the selection.
+template <typename T>
+void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8, const std::uint16_t* stored16,
+                   int x0, int x1, int D, int minDisparity, int uniquenessRatio, bool subpixel, std::uint16_t* total,
+                   std::int16_t* disparity16, std::int16_t* bestIndex) {
+  const D16 d16;
+  const int N = static_cast<int>(hn::Lanes(d16));
+  const int slot = pathSlot(D);
+  for (int x = x0; x < x1; ++x) {
+    const std::size_t local = static_cast<std::size_t>(x - x0) * D;
+    const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1;
+    std::uint16_t* S = total + local;
+    auto minimum = hn::Set(d16, std::uint16_t{0xFFFF});
+    for (int i = 0; i < D; i += N) {
+      auto sum = stored8 != nullptr ? LoadAsU16(stored8 + local + i) : hn::LoadU(d16, stored16 + local + i);
+      for (int k = 0; k < count; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
+      hn::StoreU(sum, d16, S + i);
+      minimum = hn::Min(minimum, sum);
+    }
+    const auto target = hn::MinOfLanes(d16, minimum);
+    int best = 0;
+    for (int i = 0; i < D; i += N) {
+      const intptr_t lane = hn::FindFirstTrue(d16, hn::Eq(hn::LoadU(d16, S + i), target));
+      if (lane >= 0) {
+        best = i + static_cast<int>(lane);
+        break;
+      }
+    }
+    SelectPixel(S, best, x, D, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex);
+  }
+}
+
+void SumSelectRow8(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
+                   const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
+                   bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex) {
+  SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
+                disparity16, bestIndex);
+}
+void SumSelectRow16(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
+                    const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
+                    bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex) {
+  SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
+                disparity16, bestIndex);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace cpu
+}  // namespace lidar_sgm
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lidar_sgm {
+namespace cpu {
+
+HWY_EXPORT(SelectRowImpl);
+HWY_EXPORT(SumSelectRow8);
+HWY_EXPORT(SumSelectRow16);
+
+void selectRow(const std::uint16_t* total, int x0, int x1, int numDisparities, int minDisparity,
+               int uniquenessRatio, bool subpixel, std::int16_t* disparity16, std::int16_t* bestIndex) {
+  HWY_DYNAMIC_DISPATCH(SelectRowImpl)(total, x0, x1, numDisparities, minDisparity, uniquenessRatio, subpixel,
+                                      disparity16, bestIndex);
+}
+
+void sumSelectRow(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
+                  const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
+                  int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
+                  std::int16_t* bestIndex) {
+  HWY_DYNAMIC_DISPATCH(SumSelectRow8)(paths, count, stored8, stored16, x0, x1, numDisparities, minDisparity,
+                                      uniquenessRatio, subpixel, total, disparity16, bestIndex);
+}
+void sumSelectRow(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
+                  const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
+                  int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
+                  std::int16_t* bestIndex) {
+  HWY_DYNAMIC_DISPATCH(SumSelectRow16)(paths, count, stored8, stored16, x0, x1, numDisparities, minDisparity,
+                                       uniquenessRatio, subpixel, total, disparity16, bestIndex);
+}
+
+void selectDisparity(const AggregatedCostVolume& sum, int minDisparity, int uniquenessRatio, bool subpixel,
+                     SelectedDisparity out, int threads) {
+  parallelRanges(sum.height(), threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      selectRow(sum.at(0, y), 0, sum.width(), sum.numDisparities(), minDisparity, uniquenessRatio, subpixel,
+                out.disparity16.row(y), out.bestIndex.row(y));
+    }
+  });
+}
+
+}  // namespace cpu
+}  // namespace lidar_sgm
+#endif  // HWY_ONCE

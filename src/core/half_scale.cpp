@@ -1,0 +1,59 @@
+#include "core/half_scale.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace lidar_sgm {
+namespace {
+
+template <typename Pixel>
+void downscaleHalfImpl(ImageView<const Pixel> in, Image<Pixel>& out) {
+  out.resize(halfSize(in.width), halfSize(in.height));
+  for (int y = 0; y < out.height(); ++y) {
+    const Pixel* row0 = in.row(2 * y);
+    const Pixel* row1 = in.row(std::min(2 * y + 1, in.height - 1));
+    for (int x = 0; x < out.width(); ++x) {
+      const int x0 = 2 * x;
+      const int x1 = std::min(x0 + 1, in.width - 1);
+      const std::uint32_t sum = std::uint32_t{row0[x0]} + row0[x1] + row1[x0] + row1[x1];
+      out(x, y) = static_cast<Pixel>((sum + 2) >> 2);
+    }
+  }
+}
+
+}  // namespace
+
+void downscaleHalf(ImageView<const std::uint8_t> in, Image<std::uint8_t>& out) { downscaleHalfImpl(in, out); }
+void downscaleHalf(ImageView<const std::uint16_t> in, Image<std::uint16_t>& out) { downscaleHalfImpl(in, out); }
+
+LidarPoints halveLidarPoints(const LidarPoints& points) {
+  std::vector<LidarSample> samples;
+  samples.reserve(points.size());
+  for (int y = 0; y < points.height(); ++y) {
+    for (int x = 0; x < points.width(); ++x) {
+      for (const int* d = points.begin(x, y); d != points.end(x, y); ++d) {
+        samples.push_back({x / 2, y / 2, (*d + 1) / 2});
+      }
+    }
+  }
+  return LidarPoints(halfSize(points.width()), halfSize(points.height()), samples);
+}
+
+void upscaleDisparity(ImageView<const std::int16_t> half, ImageView<std::int16_t> full) {
+  for (int y = 0; y < full.height; ++y) {
+    const std::int16_t* src = half.row(y / 2);
+    std::int16_t* dst = full.row(y);
+    for (int x = 0; x < full.width; ++x) {
+      const std::int16_t d = src[x / 2];
+      dst[x] = d == kInvalidDisparity ? kInvalidDisparity : static_cast<std::int16_t>(2 * d);
+    }
+  }
+}
+
+void upscaleMask(ImageView<const std::uint8_t> half, ImageView<std::uint8_t> full) {
+  for (int y = 0; y < full.height; ++y) {
+    for (int x = 0; x < full.width; ++x) full(x, y) = half(x / 2, y / 2);
+  }
+}
+
+}  // namespace lidar_sgm

@@ -1,0 +1,439 @@
+// Every fast backend against cpu_ref (the specification), stage by stage and end to end, bit for
+// bit: odd sizes, padded strides, 8- and 16-bit images, 16..256 disparities, non-zero
+// minDisparity, 4 and 8 paths, every mode (Triple-SGM included), every option, 1, 2 and 7
+// threads. A backend that is not built (or has no device) skips.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <sstream>
+#include <string>
+#include <tuple>
+
+#include "backend_test_scenes.hpp"
+#include "backends/common/stages.hpp"
+#include "lidar_sgm/core/matcher.hpp"
+#ifdef LIDAR_SGM_TEST_CPU_BACKEND
+#include "backends/cpu/cpu_stages.hpp"
+#endif
+
+namespace lidar_sgm {
+namespace {
+
+using test::BackendScene;
+using test::makeBackendScene;
+
+// A backend's whole-volume stages, with cpu_ref's signatures plus the thread count.
+struct StageSet {
+  std::function<void(ImageView<const std::uint8_t>, CensusType, ImageView<std::uint64_t>)> census8;
+  std::function<void(ImageView<const std::uint16_t>, CensusType, ImageView<std::uint64_t>)> census16;
+  std::function<void(ImageView<const std::uint64_t>, ImageView<const std::uint64_t>, CensusType, int,
+                     MatchingCostVolume&)> censusCost;
+  std::function<void(ImageView<const std::uint64_t>, ImageView<const std::uint64_t>, CensusType, int, int,
+                     MatchingCostVolume&)> verticalCensusCost;
+  std::function<void(const MatchingCostVolume&, const MatchingCostVolume&, MatchingCostVolume&)> combineCameraCosts;
+  std::function<void(const LidarPoints&, const LidarCostTable&, int, MatchingCostVolume&, ImageView<std::uint8_t>)>
+      lidarCost;
+  std::function<void(const LidarPoints&, int, ImageView<std::uint8_t>)> lidarCoverage;
+  std::function<void(const MatchingCostVolume&, const MatchingCostVolume&, ImageView<const std::uint8_t>, int, bool,
+                     MatchingCostVolume&)> fuseCosts;
+  std::function<void(const MatchingCostVolume&, int, int, int, AggregatedCostVolume&)> aggregatePaths;
+  std::function<void(const AggregatedCostVolume&, int, int, bool, SelectedDisparity)> selectDisparity;
+  std::function<void(const AggregatedCostVolume&, int, ImageView<std::int16_t>)> rightDisparityIndex;
+  std::function<void(SelectedDisparity, ImageView<const std::int16_t>, ImageView<const std::uint8_t>, int, int, bool)>
+      leftRightCheck;
+  std::function<void(ImageView<const std::int16_t>, int, ImageView<std::int16_t>)> medianFilter;
+};
+
+// The stage entry points of `backend` at `threads`; false when this build has none.
+bool stagesOf(const std::string& backend, int threads, StageSet& s) {
+#ifdef LIDAR_SGM_TEST_CPU_BACKEND
+  if (backend == "cpu") {
+    const int t = threads;
+    s.census8 = [t](auto image, auto type, auto out) { cpu::censusTransform(image, type, out, t); };
+    s.census16 = [t](auto image, auto type, auto out) { cpu::censusTransform(image, type, out, t); };
+    s.censusCost = [t](auto l, auto r, auto type, int minD, auto& cost) { cpu::censusCost(l, r, type, minD, cost, t); };
+    s.verticalCensusCost = [t](auto l, auto u, auto type, int ratio, int minD, auto& cost) {
+      cpu::verticalCensusCost(l, u, type, ratio, minD, cost, t);
+    };
+    s.combineCameraCosts = [t](const auto& h, const auto& v, auto& c) { cpu::combineCameraCosts(h, v, c, t); };
+    s.lidarCost = [t](const auto& p, const auto& table, int minD, auto& cost, auto support) {
+      cpu::lidarCost(p, table, minD, cost, support, t);
+    };
+    s.lidarCoverage = [t](const auto& p, int rows, auto out) { cpu::lidarCoverage(p, rows, out, t); };
+    s.fuseCosts = [t](const auto& l, const auto& st, auto support, int w, bool flag, auto& out) {
+      cpu::fuseCosts(l, st, support, w, flag, out, t);
+    };
+    s.aggregatePaths = [t](const auto& cost, int P1, int P2, int paths, auto& sum) {
+      cpu::aggregatePaths(cost, P1, P2, paths, sum, t);
+    };
+    s.selectDisparity = [t](const auto& sum, int minD, int u, bool sub, auto out) {
+      cpu::selectDisparity(sum, minD, u, sub, out, t);
+    };
+    s.rightDisparityIndex = [t](const auto& sum, int minD, auto out) { cpu::rightDisparityIndex(sum, minD, out, t); };
+    s.leftRightCheck = [t](auto sel, auto right, auto support, int minD, int maxDiff, bool keep) {
+      cpu::leftRightCheck(sel, right, support, minD, maxDiff, keep, t);
+    };
+    s.medianFilter = [t](auto in, int size, auto out) { cpu::medianFilter(in, size, out, t); };
+    return true;
+  }
+#endif
+  (void)backend;
+  (void)threads;
+  (void)s;
+  return false;
+}
+
+template <typename T>
+::testing::AssertionResult sameImages(const Image<T>& expected, const Image<T>& actual) {
+  for (int y = 0; y < expected.height(); ++y) {
+    for (int x = 0; x < expected.width(); ++x) {
+      if (expected(x, y) != actual(x, y)) {
+        return ::testing::AssertionFailure() << "first difference at (" << x << ", " << y << "): cpu_ref "
+                                             << +expected(x, y) << ", backend " << +actual(x, y);
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+template <typename T>
+::testing::AssertionResult sameVolumes(const CostVolume<T>& expected, const CostVolume<T>& actual) {
+  for (int y = 0; y < expected.height(); ++y) {
+    for (int x = 0; x < expected.width(); ++x) {
+      for (int d = 0; d < expected.numDisparities(); ++d) {
+        if (expected(x, y, d) != actual(x, y, d)) {
+          return ::testing::AssertionFailure() << "first difference at (" << x << ", " << y << ", d " << d
+                                               << "): cpu_ref " << +expected(x, y, d) << ", backend "
+                                               << +actual(x, y, d);
+        }
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Stage by stage: (backend, threads).
+
+class BackendStages : public ::testing::TestWithParam<std::tuple<std::string, int>> {
+ protected:
+  void SetUp() override {
+    const std::string& name = std::get<0>(GetParam());
+    if (!isAvailable(backendFromString(name))) GTEST_SKIP() << "backend " << name << " is not built";
+    if (!stagesOf(name, std::get<1>(GetParam()), stages_)) GTEST_SKIP() << name << " has no stage entry points";
+  }
+  StageSet stages_;
+};
+
+struct StageCase {
+  int width, height, minDisparity, numDisparities;
+};
+constexpr StageCase kStageCases[] = {{17, 9, 0, 16}, {64, 40, -8, 32}, {131, 47, 5, 64}};
+
+TEST_P(BackendStages, CensusTransformEightAndSixteenBitPaddedRows) {
+  for (const StageCase& c : kStageCases) {
+    const BackendScene scene = makeBackendScene(c.width, c.height, c.minDisparity, c.numDisparities, 3);
+    for (CensusType type : {CensusType::Census9x7, CensusType::CenterSymmetric9x7}) {
+      Image<std::uint64_t> expected(c.width, c.height), actual(c.width, c.height);
+      cpu_ref::censusTransform(scene.left8.view(), type, expected.view());
+      stages_.census8(scene.left8.view(), type, actual.view());
+      EXPECT_TRUE(sameImages(expected, actual)) << c.width << "x" << c.height << " 8-bit " << toString(type);
+      cpu_ref::censusTransform(scene.left16.view(), type, expected.view());
+      stages_.census16(scene.left16.view(), type, actual.view());
+      EXPECT_TRUE(sameImages(expected, actual)) << c.width << "x" << c.height << " 16-bit " << toString(type);
+    }
+  }
+}
+
+TEST_P(BackendStages, CensusAndVerticalCostsAndTheirCombination) {
+  for (const StageCase& c : kStageCases) {
+    const BackendScene scene = makeBackendScene(c.width, c.height, c.minDisparity, c.numDisparities, 4);
+    for (CensusType type : {CensusType::Census9x7, CensusType::CenterSymmetric9x7}) {
+      Image<std::uint64_t> left(c.width, c.height), right(c.width, c.height), up(c.width, c.height);
+      cpu_ref::censusTransform(scene.left8.view(), type, left.view());
+      cpu_ref::censusTransform(scene.right8.view(), type, right.view());
+      cpu_ref::censusTransform(scene.up8.view(), type, up.view());
+      const auto cl = std::as_const(left).view();
+      const auto cr = std::as_const(right).view();
+      const auto cu = std::as_const(up).view();
+      MatchingCostVolume expected(c.width, c.height, c.numDisparities), actual(c.width, c.height, c.numDisparities);
+      cpu_ref::censusCost(cl, cr, type, c.minDisparity, expected);
+      stages_.censusCost(cl, cr, type, c.minDisparity, actual);
+      EXPECT_TRUE(sameVolumes(expected, actual)) << "censusCost " << c.width << "x" << c.height;
+      MatchingCostVolume vExpected(c.width, c.height, c.numDisparities), vActual(c.width, c.height, c.numDisparities);
+      const int ratio16 = baselineRatio16(scene.upRatio);
+      cpu_ref::verticalCensusCost(cl, cu, type, ratio16, c.minDisparity, vExpected);
+      stages_.verticalCensusCost(cl, cu, type, ratio16, c.minDisparity, vActual);
+      EXPECT_TRUE(sameVolumes(vExpected, vActual)) << "verticalCensusCost " << c.width << "x" << c.height;
+      MatchingCostVolume combinedExpected(c.width, c.height, c.numDisparities);
+      MatchingCostVolume combinedActual(c.width, c.height, c.numDisparities);
+      cpu_ref::combineCameraCosts(expected, vExpected, combinedExpected);
+      stages_.combineCameraCosts(expected, vExpected, combinedActual);
+      EXPECT_TRUE(sameVolumes(combinedExpected, combinedActual)) << "combineCameraCosts";
+    }
+  }
+}
+
+TEST_P(BackendStages, LidarCostSupportCoverageAndFusion) {
+  for (const StageCase& c : kStageCases) {
+    const BackendScene scene = makeBackendScene(c.width, c.height, c.minDisparity, c.numDisparities, 5);
+    for (const auto& [sigma, cap] : {std::pair<float, int>{2.0f, 62}, {0.7f, 255}, {9.5f, 40}}) {
+      const LidarCostTable table(sigma, cap);
+      MatchingCostVolume expected(c.width, c.height, c.numDisparities), actual(c.width, c.height, c.numDisparities);
+      Image<std::uint8_t> supportExpected(c.width, c.height), supportActual(c.width, c.height);
+      cpu_ref::lidarCost(scene.lidar, table, c.minDisparity, expected, supportExpected.view());
+      stages_.lidarCost(scene.lidar, table, c.minDisparity, actual, supportActual.view());
+      EXPECT_TRUE(sameVolumes(expected, actual)) << "lidarCost sigma " << sigma << " cap " << cap;
+      EXPECT_TRUE(sameImages(supportExpected, supportActual)) << "support";
+
+      Image<std::uint64_t> left(c.width, c.height), right(c.width, c.height);
+      cpu_ref::censusTransform(scene.left8.view(), CensusType::Census9x7, left.view());
+      cpu_ref::censusTransform(scene.right8.view(), CensusType::Census9x7, right.view());
+      MatchingCostVolume stereo(c.width, c.height, c.numDisparities);
+      cpu_ref::censusCost(std::as_const(left).view(), std::as_const(right).view(), CensusType::Census9x7,
+                          c.minDisparity, stereo);
+      for (const int w : {0, 1, 179, 255, 256}) {
+        for (const bool stereoWithoutLidar : {false, true}) {
+          MatchingCostVolume fusedExpected(c.width, c.height, c.numDisparities);
+          MatchingCostVolume fusedActual(c.width, c.height, c.numDisparities);
+          cpu_ref::fuseCosts(expected, stereo, std::as_const(supportExpected).view(), w, stereoWithoutLidar,
+                             fusedExpected);
+          stages_.fuseCosts(expected, stereo, std::as_const(supportExpected).view(), w, stereoWithoutLidar,
+                            fusedActual);
+          EXPECT_TRUE(sameVolumes(fusedExpected, fusedActual)) << "fuseCosts w " << w;
+        }
+      }
+    }
+    for (const int rows : {1, 6, 64}) {
+      Image<std::uint8_t> coverageExpected(c.width, c.height), coverageActual(c.width, c.height);
+      cpu_ref::lidarCoverage(scene.lidar, rows, coverageExpected.view());
+      stages_.lidarCoverage(scene.lidar, rows, coverageActual.view());
+      EXPECT_TRUE(sameImages(coverageExpected, coverageActual)) << "lidarCoverage rows " << rows;
+    }
+  }
+}
+
+// A cost volume with every value of [0, maxCost], random, as the aggregation's input.
+MatchingCostVolume randomCosts(int width, int height, int D, int maxCost, unsigned seed) {
+  MatchingCostVolume cost(width, height, D);
+  std::mt19937 engine(seed);
+  for (std::size_t i = 0; i < cost.size(); ++i) {
+    cost.data()[i] = static_cast<std::uint8_t>(engine() % static_cast<unsigned>(maxCost + 1));
+  }
+  return cost;
+}
+
+TEST_P(BackendStages, AggregatePathsSelectionAndLeftRightCheck) {
+  struct Penalties {
+    int P1, P2, maxCost;
+  };
+  for (const StageCase& c : kStageCases) {
+    for (const Penalties& pen : {Penalties{10, 100, 62}, Penalties{0, 1, 62}, Penalties{3999, 4000, 255}}) {
+      const MatchingCostVolume cost = randomCosts(c.width, c.height, c.numDisparities, pen.maxCost, 11);
+      for (const int paths : {4, 8}) {
+        AggregatedCostVolume expected, actual;
+        cpu_ref::aggregatePaths(cost, pen.P1, pen.P2, paths, expected);
+        stages_.aggregatePaths(cost, pen.P1, pen.P2, paths, actual);
+        ASSERT_TRUE(sameVolumes(expected, actual)) << "aggregatePaths P1 " << pen.P1 << " P2 " << pen.P2 << " paths "
+                                                   << paths << " " << c.width << "x" << c.height;
+        for (const int uniqueness : {0, 5, 50}) {
+          for (const bool subpixel : {true, false}) {
+            Image<std::int16_t> dispExpected(c.width, c.height), bestExpected(c.width, c.height);
+            Image<std::int16_t> dispActual(c.width, c.height), bestActual(c.width, c.height);
+            const SelectedDisparity selExpected{dispExpected.view(), bestExpected.view()};
+            const SelectedDisparity selActual{dispActual.view(), bestActual.view()};
+            cpu_ref::selectDisparity(expected, c.minDisparity, uniqueness, subpixel, selExpected);
+            stages_.selectDisparity(expected, c.minDisparity, uniqueness, subpixel, selActual);
+            EXPECT_TRUE(sameImages(dispExpected, dispActual)) << "selectDisparity u " << uniqueness;
+            EXPECT_TRUE(sameImages(bestExpected, bestActual)) << "selectDisparity index";
+
+            Image<std::int16_t> rightExpected(c.width, c.height), rightActual(c.width, c.height);
+            cpu_ref::rightDisparityIndex(expected, c.minDisparity, rightExpected.view());
+            stages_.rightDisparityIndex(expected, c.minDisparity, rightActual.view());
+            EXPECT_TRUE(sameImages(rightExpected, rightActual)) << "rightDisparityIndex";
+            Image<std::uint8_t> support(c.width, c.height);
+            for (int y = 0; y < c.height; ++y) {
+              for (int x = 0; x < c.width; ++x) support(x, y) = (x * 7 + y * 3) % 5 == 0 ? 1 : 0;
+            }
+            for (const bool keep : {false, true}) {
+              for (const bool withSupport : {false, true}) {
+                Image<std::int16_t> dE = dispExpected, bE = bestExpected, dA = dispExpected, bA = bestExpected;
+                const ImageView<const std::uint8_t> sv =
+                    withSupport ? std::as_const(support).view() : ImageView<const std::uint8_t>();
+                cpu_ref::leftRightCheck({dE.view(), bE.view()}, std::as_const(rightExpected).view(), sv,
+                                        c.minDisparity, 1, keep);
+                stages_.leftRightCheck({dA.view(), bA.view()}, std::as_const(rightExpected).view(), sv,
+                                       c.minDisparity, 1, keep);
+                EXPECT_TRUE(sameImages(dE, dA)) << "leftRightCheck keep " << keep << " support " << withSupport;
+                EXPECT_TRUE(sameImages(bE, bA)) << "leftRightCheck index";
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_P(BackendStages, MedianFilterWithInvalidPixels) {
+  for (const StageCase& c : kStageCases) {
+    std::mt19937 engine(9);
+    for (const int invalidOneIn : {1000000, 40, 3}) {
+      Image<std::int16_t> in(c.width, c.height);
+      for (int y = 0; y < c.height; ++y) {
+        for (int x = 0; x < c.width; ++x) {
+          const bool invalid = engine() % static_cast<unsigned>(invalidOneIn) == 0;
+          in(x, y) = invalid ? kInvalidDisparity : static_cast<std::int16_t>(engine() % 4096u) - 100;
+        }
+      }
+      const test::PaddedImage<std::int16_t> paddedIn = test::padded(in, 5, std::int16_t{77});
+      for (const int size : {0, 3, 5}) {
+        Image<std::int16_t> expected(c.width, c.height), actual(c.width, c.height);
+        cpu_ref::medianFilter(paddedIn.view(), size, expected.view());
+        stages_.medianFilter(paddedIn.view(), size, actual.view());
+        EXPECT_TRUE(sameImages(expected, actual)) << "median " << size << " invalid 1/" << invalidOneIn << " "
+                                                  << c.width << "x" << c.height;
+      }
+    }
+  }
+}
+
+std::string stageName(const ::testing::TestParamInfo<std::tuple<std::string, int>>& info) {
+  return std::get<0>(info.param) + "_" + std::to_string(std::get<1>(info.param)) + "threads";
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, BackendStages,
+                         ::testing::Combine(::testing::Values("cpu", "cuda"), ::testing::Values(1, 2, 7)), stageName);
+
+// ---------------------------------------------------------------------------------------------
+// End to end: Matcher::create(backend) against Matcher::create(cpu_ref) on whole frames.
+
+struct FrameCase {
+  std::string name;
+  int width, height;
+  int bits;           // 8 or 16
+  std::string mode;   // "stereo", "lidar", "fused", "triple", "triple_fused"
+  std::function<void(Parameters&)> tweak;
+};
+
+std::vector<FrameCase> frameCases() {
+  const auto none = [](Parameters&) {};
+  std::vector<FrameCase> cases = {
+      {"Fused631x479", 631, 479, 8, "fused", none},
+      {"Stereo631x479", 631, 479, 8, "stereo", none},
+      {"Lidar631x479", 631, 479, 8, "lidar", none},
+      {"Fused17x9", 17, 9, 8, "fused", [](Parameters& p) { p.numDisparities = 16; }},
+      {"Stereo17x9", 17, 9, 8, "stereo", [](Parameters& p) { p.numDisparities = 16; }},
+      {"Fused16Bit", 131, 61, 16, "fused", [](Parameters& p) { p.numDisparities = 64; }},
+      {"Stereo16Bit", 131, 61, 16, "stereo", [](Parameters& p) { p.numDisparities = 64; }},
+      {"Disparities16", 97, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 16; }},
+      {"Disparities256", 331, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 256; }},
+      {"MinDisparityNegative", 131, 61, 8, "stereo",
+       [](Parameters& p) { p.numDisparities = 64; p.minDisparity = -7; }},
+      {"MinDisparityPositive", 131, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 64; p.minDisparity = 9; }},
+      {"EightPaths", 131, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 64; p.paths = 8; }},
+      {"EightPathsStereo", 131, 61, 8, "stereo", [](Parameters& p) { p.numDisparities = 64; p.paths = 8; }},
+      {"LargePenaltiesAndCap", 131, 61, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 64; p.P1 = 3000; p.P2 = 4000; p.lidarCostCap = 255; }},
+      {"EightPathsLargePenalties", 99, 41, 8, "lidar",
+       [](Parameters& p) { p.numDisparities = 32; p.paths = 8; p.P2 = 4000; p.lidarCostCap = 255; }},
+      {"ZeroPenalty", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.P1 = 0; p.P2 = 1; }},
+      {"AlphaZero", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.alpha = 0.0f; }},
+      {"AlphaOne", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.alpha = 1.0f; }},
+      {"SigmaAndCap", 99, 41, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 32; p.sigma = 7.3f; p.lidarCostCap = 17; }},
+      {"StereoCostWithoutLidar", 99, 41, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 32; p.stereoCostWithoutLidar = true; }},
+      {"Uniqueness", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.uniquenessRatio = 10; }},
+      {"NoLrCheck", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.lrCheck = false; }},
+      {"LrCheckWithLidar", 99, 41, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 32; p.lrCheckWithLidar = true; p.lidarCoverageRows = 2; }},
+      {"Disp12MaxDiff", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.disp12MaxDiff = 4; }},
+      {"Median3", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.medianSize = 3; }},
+      {"MedianOff", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.medianSize = 0; }},
+      {"NoSubpixel", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.subpixel = false; }},
+      {"CenterSymmetricCensus", 99, 41, 8, "stereo",
+       [](Parameters& p) { p.numDisparities = 32; p.censusType = CensusType::CenterSymmetric9x7; }},
+      {"TripleStereo", 131, 61, 8, "triple", [](Parameters& p) { p.numDisparities = 64; }},
+      {"TripleFused16Bit", 131, 61, 16, "triple_fused", [](Parameters& p) { p.numDisparities = 64; }},
+      {"HalfScaleFused", 131, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 64; p.scale = 0.5f; }},
+      {"HalfScaleStereo16Bit", 133, 63, 16, "stereo",
+       [](Parameters& p) { p.numDisparities = 64; p.minDisparity = 4; p.scale = 0.5f; }},
+  };
+  return cases;
+}
+
+class BackendFrames : public ::testing::TestWithParam<std::tuple<std::string, int, FrameCase>> {};
+
+TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
+  const auto& [name, threads, c] = GetParam();
+  if (!isAvailable(backendFromString(name))) GTEST_SKIP() << "backend " << name << " is not built";
+  Parameters params;
+  c.tweak(params);
+  params.threads = threads;
+  const BackendScene scene =
+      makeBackendScene(c.width, c.height, params.minDisparity, params.numDisparities, 21);
+  const bool sixteen = c.bits == 16;
+  const GrayImageView left = sixteen ? GrayImageView(scene.left16.view()) : GrayImageView(scene.left8.view());
+  const GrayImageView right = c.mode == "lidar" ? GrayImageView()
+                              : sixteen        ? GrayImageView(scene.right16.view())
+                                               : GrayImageView(scene.right8.view());
+  VerticalView up;
+  if (c.mode == "triple" || c.mode == "triple_fused") {
+    up.up = sixteen ? GrayImageView(scene.up16.view()) : GrayImageView(scene.up8.view());
+    up.baselineRatio = scene.upRatio;
+  }
+  const bool withLidar = c.mode == "lidar" || c.mode == "fused" || c.mode == "triple_fused";
+  const LidarPoints* lidar = withLidar ? &scene.lidar : nullptr;
+
+  auto reference = Matcher::create(Backend::CpuRef, params);
+  auto backend = Matcher::create(backendFromString(name), params);
+  ASSERT_EQ(toString(backend->backend()), name);
+  Image<std::int16_t> expected(c.width, c.height), actual(c.width, c.height);
+  reference->compute(left, right, up, lidar, expected.view());
+  // Twice: the second frame reuses the buffers of the first and must not depend on them.
+  for (int frame = 0; frame < 2; ++frame) {
+    actual.fill(123);
+    backend->compute(left, right, up, lidar, actual.view());
+    ASSERT_TRUE(sameImages(expected, actual)) << c.name << ", frame " << frame;
+  }
+  EXPECT_EQ(backend->lastMode(), reference->lastMode());
+  Image<std::uint8_t> supportExpected(c.width, c.height), supportActual(c.width, c.height);
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) {
+      supportExpected(x, y) = reference->lidarSupport()(x, y);
+      supportActual(x, y) = backend->lidarSupport()(x, y);
+    }
+  }
+  EXPECT_TRUE(sameImages(supportExpected, supportActual)) << "lidarSupport";
+  // A result that is all invalid would match trivially: the frames must have estimates.
+  int valid = 0;
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) valid += expected(x, y) != kInvalidDisparity ? 1 : 0;
+  }
+  EXPECT_GT(valid, c.width * c.height / 3);
+}
+
+std::string frameName(const ::testing::TestParamInfo<std::tuple<std::string, int, FrameCase>>& info) {
+  return std::get<0>(info.param) + "_" + std::to_string(std::get<1>(info.param)) + "threads_" +
+         std::get<2>(info.param).name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, BackendFrames,
+                         ::testing::Combine(::testing::Values("cpu", "cuda"), ::testing::Values(1, 2, 7),
+                                            ::testing::ValuesIn(frameCases())),
+                         frameName);
+
+TEST(BackendRegistry, AutoIsTheFastestBuiltBackend) {
+  if (isAvailable(Backend::Cpu)) {
+    EXPECT_EQ(resolve(Backend::Auto), Backend::Cpu);
+    EXPECT_EQ(Matcher::create(Backend::Auto)->backend(), Backend::Cpu);
+    EXPECT_NE(simdTarget(), "none");
+  } else {
+    EXPECT_EQ(resolve(Backend::Auto), Backend::CpuRef);
+  }
+  EXPECT_TRUE(isAvailable(Backend::CpuRef));
+}
+
+}  // namespace
+}  // namespace lidar_sgm
