@@ -32,7 +32,7 @@ void printHelp(const char* program) {
   std::printf(
       "Syntax is: %s INPUT.{pcd,bin,ply} OUTPUT.{pcd,ply} -calib CALIB [-left L.png] [-right R.png] <options>\n"
       "  INPUT   the LiDAR scan: KITTI velodyne .bin, or PCD/PLY with x, y, z fields (LiDAR frame, metres)\n"
-      "  OUTPUT  the dense cloud: binary-compressed PCD or binary PLY; XYZRGB when there is a left image, else XYZ\n"
+      "  OUTPUT  the dense cloud, PCD or PLY (see -format); XYZRGB when there is a left image, else XYZ\n"
       "  -calib CALIB             KITTI object calib (.txt), KITTI raw (calib_cam_to_cam.txt or its folder,\n"
       "                           with calib_velo_to_cam.txt beside it) or our YAML (.yaml/.yml)\n"
       "  -left L.png -right R.png rectified stereo pair: fused LiDAR-SGM (default without them: LiDAR-only)\n"
@@ -40,6 +40,11 @@ void printHelp(const char* program) {
       "  -image_size WxH          image size when neither the calibration nor an image gives it (KITTI object calib)\n"
       "where options are:\n"
       "%s"
+      "  -format binary|compressed|ascii\n"
+      "                           OUTPUT's encoding: binary (PCD DATA binary, PLY binary_little_endian; the\n"
+      "                           fastest), compressed (PCD binary_compressed: PCL's LZF, 10-20x slower and\n"
+      "                           only ~3 %% smaller for a dense cloud; not for PLY) or ascii (text, ~60x\n"
+      "                           slower) (default: binary)\n"
       "  -keep_organized          one point per pixel, NaN where there is none (default: valid points only)\n"
       "  -frame lidar|camera      output frame (default: lidar, the input's frame)\n"
       "  -max_depth M             drop output points deeper than M metres, 0 = keep all (default: %g)\n"
@@ -74,14 +79,21 @@ void parseImageSize(const std::string& text, int& width, int& height) {
 }
 
 struct OutputOptions {
+  lidar_sgm::io::CloudFormat format = lidar_sgm::io::CloudFormat::Binary;
   lidar_sgm::geometry::OutputFrame frame = lidar_sgm::geometry::OutputFrame::Lidar;
   double maxDepth = lidar_sgm::geometry::ReprojectionOptions().maxDepth;
   int stride = 1;
 };
 
-/// -frame, -max_depth, -stride, checked before any file is read.
+/// -format, -frame, -max_depth, -stride, checked before any file is read.
 OutputOptions outputOptionsFrom(const Arguments& args) {
   OutputOptions o;
+  try {
+    o.format = lidar_sgm::io::cloudFormatFromString(args.text("format", "binary"));
+    lidar_sgm::io::checkCloudOutput(args.positionals().at(1), o.format);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("option -format: ") + e.what());
+  }
   const std::string frame = args.text("frame", "lidar");
   if (frame != "lidar" && frame != "camera") {
     throw std::invalid_argument("option -frame: '" + frame + "' must be lidar or camera");
@@ -111,7 +123,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   sgm.setCalibration(calibration);
   const lidar_sgm::Parameters params = lidar_sgm::apps::parametersFrom(args);
   sgm.setParameters(params);
-  sgm.setBackend(lidar_sgm::backendFromString(args.text("backend", "auto")));
+  sgm.setBackend(lidar_sgm::apps::backendFrom(args));
   lidar_sgm::geometry::ProjectionOptions projection;
   projection.occlusion.enabled = !args.has("no_occlusion_filter");
   sgm.setProjectionOptions(projection);
@@ -152,9 +164,10 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const auto& stats = sgm.getProjectedLidar().stats;
   const auto& used = sgm.getDisparityImage();
   std::printf("Projecting [done, %.0f ms : %s]\n", timings.project, stats.describe().c_str());
-  std::printf("Matching (%s, alpha %g) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity]\n",
+  std::printf("Matching (%s, alpha %g%s) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity]\n",
               lidar_sgm::toString(sgm.getLastMode()).c_str(),
-              sgm.getLastMode() == lidar_sgm::MatchMode::Fused ? params.alpha : 1.0, timings.match, used.width(),
+              sgm.getLastMode() == lidar_sgm::MatchMode::Fused ? params.alpha : 1.0,
+              params.scale == 1.0f ? "" : ", matched at scale 0.5", timings.match, used.width(),
               used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()));
   std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
               dense.width, dense.height, frame.c_str());
@@ -163,9 +176,9 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const std::string disparityPath = args.text("disparity", "");
   const std::string colorPath = args.text("color", "");
   Timer saveTimer;
-  std::printf("Saving %s", outPath.c_str());
+  std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
-  lidar_sgm::io::writeCloud(outPath, dense);
+  lidar_sgm::io::writeCloud(outPath, dense, out.format);
   if (!disparityPath.empty()) {
     std::printf(", %s", disparityPath.c_str());
     lidar_sgm::io::writeImageAtomically(disparityPath, lidar_sgm::io::toKittiDisparity(used.view()));
@@ -183,7 +196,8 @@ int run(int argc, char** argv) {
   using lidar_sgm::apps::joined;
   const Arguments args(argc, argv,
                        joined(lidar_sgm::apps::sgmValueOptions(),
-                              {"calib", "left", "right", "image_size", "frame", "max_depth", "stride", "disparity", "color"}),
+                              {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
+                               "disparity", "color"}),
                        joined(lidar_sgm::apps::sgmFlagOptions(),
                               {"h", "help", "keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (args.has("h") || args.has("help")) {
@@ -225,6 +239,7 @@ int run(int argc, char** argv) {
     }
   }
   lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
+  lidar_sgm::apps::backendFrom(args);
   outputOptionsFrom(args);
   int width = 0;
   int height = 0;

@@ -84,7 +84,7 @@ int run(int argc, char** argv) {
     if (samePath(colorPath, outPath)) throw std::invalid_argument("-color must differ from OUT.png");
   }
   const lidar_sgm::Parameters params = parametersFrom(args);
-  const lidar_sgm::Backend backend = lidar_sgm::backendFromString(args.text("backend", "auto"));
+  const lidar_sgm::Backend backend = lidar_sgm::apps::backendFrom(args);
 
   Timer loadTimer;
   std::printf("Loading %s", leftPath.c_str());
@@ -121,11 +121,11 @@ int run(int argc, char** argv) {
   for (int y = 0; y < disparity.height(); ++y) {
     for (int x = 0; x < disparity.width(); ++x) valid += disparity(x, y) != lidar_sgm::kInvalidDisparity;
   }
-  std::printf("Matching (%s, %s, alpha %g) [done, %.0f ms : %.1f %% of pixels have a disparity]\n",
+  std::printf("Matching (%s, %s, alpha %g%s) [done, %.0f ms : %.1f %% of pixels have a disparity]\n",
               lidar_sgm::toString(matcher->lastMode()).c_str(), lidar_sgm::toString(matcher->backend()).c_str(),
               matcher->lastMode() == lidar_sgm::MatchMode::Fused ? params.alpha
               : matcher->lastMode() == lidar_sgm::MatchMode::LidarOnly ? 1.0 : 0.0,
-              sgmTimer.elapsedMs(), 100.0 * static_cast<double>(valid) / (static_cast<double>(disparity.width()) * disparity.height()));
+              params.scale == 1.0f ? "" : ", matched at scale 0.5", sgmTimer.elapsedMs(), 100.0 * static_cast<double>(valid) / (static_cast<double>(disparity.width()) * disparity.height()));
 
   Timer saveTimer;
   std::printf("Saving %s", outPath.c_str());

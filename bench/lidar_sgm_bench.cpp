@@ -1,102 +1,385 @@
-// lidar_sgm_bench: time per frame and per stage, core only (builds without OpenCV/PCL).
-// Prints a settings block, then the median over -runs frames after one warm-up frame.
-#include <algorithm>
-#include <chrono>
+// lidar_sgm_bench: time per frame and per stage on a real frame, against OpenCV's StereoSGBM.
+//
+// By default the KITTI 2015 pair 000000_10 with the GT-sampled 64-beam LiDAR of protocol P1;
+// -left/-right/-lidar for other files; -synthetic for the built-in frame (the only input when
+// the bench is built without lidar_sgm::io). Prints a settings block, the median of -runs frames
+// after 2 warm-up frames per configuration as a markdown table for BENCHMARK.md, the peak memory
+// of the fused frame, OpenCV's SGBM on the same pair, and with -growth the cost per W*H*D.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench_frame.hpp"
+#include "bench_system.hpp"
+#include "bench_timing.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+#include "bench_frame_io.hpp"
+#endif
+#ifdef LIDAR_SGM_BENCH_HAVE_OPENCV
+#include "bench_opencv_sgbm.hpp"
+#endif
+
+namespace lidar_sgm {
+namespace bench {
 namespace {
 
-using lidar_sgm::Image;
+// Two untimed frames first: the first allocates the matcher's buffers and faults in their pages,
+// the second warms the caches; a sequence of frames never pays either again.
+constexpr int kWarmups = 2;
+const char* kKittiFrame = "000000_10";
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-// A textured pair with a known shift and a 64-beam-like sparse LiDAR (about 5 % of pixels):
-// the work per frame does not depend on the image content, only on the sizes.
-struct Frame {
-  Image<std::uint8_t> left, right;
-  lidar_sgm::LidarPoints lidar;
+struct Options {
+  std::string backend = "auto";
+  int threads = 0;
+  int runs = 20;
+  int numDisparities = 128;
+  int paths = 4;
+  std::vector<std::string> configs;  ///< keys of the configurations to run; empty: all
+  bool synthetic = false;
+  int width = 1242;   ///< of the synthetic frame
+  int height = 375;
+  std::string dataRoot;  ///< empty: $LIDAR_SGM_DATA, else the ../shared/data found at configure time
+  std::string left, right, lidar;
+  bool growth = false;
+  bool help = false;
 };
 
-Frame makeFrame(int width, int height) {
-  Frame f{Image<std::uint8_t>(width, height), Image<std::uint8_t>(width, height), {}};
-  std::mt19937 engine(1);
-  std::vector<lidar_sgm::LidarSample> samples;
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) f.left(x, y) = static_cast<std::uint8_t>(engine() % 256u);
-    for (int x = 0; x < width; ++x) f.right(x, y) = f.left(std::min(width - 1, x + 20), y);
-    if (y > height / 3 && y % 6 == 0) {
-      for (int x = 0; x < width; x += 2) samples.push_back({x, y, 20 * lidar_sgm::kDisparityScale});
+void printUsage(const char* program) {
+  std::printf(
+      "usage: %s [input] [options]\n"
+      "input (default: KITTI 2015 %s with the LiDAR of protocol P1, from the shared data):\n"
+      "  -data ROOT              shared data folder (default $LIDAR_SGM_DATA, else %s)\n"
+      "  -left L -right R -lidar D   a rectified 8-bit pair and a KITTI sparse disparity PNG\n"
+      "  -synthetic [-width 1242 -height 375]   the built-in synthetic frame\n"
+      "options:\n"
+      "  -backend auto|cpu|cpu_ref|cuda   (default auto)\n"
+      "  -threads N              worker threads, 0 = hardware threads (default 0)\n"
+      "  -runs N                 timed frames per configuration, median reported (default 20)\n"
+      "  -configs LIST           comma list of fused,stereo,lidar,paths8,half (default all)\n"
+      "  -num_disparities N      (default 128)\n"
+      "  -paths 4|8              SGM paths of every configuration but paths8 (default 4)\n"
+      "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n",
+      program, kKittiFrame, LIDAR_SGM_SHARED_DATA);
+}
+
+int parseInt(const std::string& option, const std::string& value) {
+  std::size_t used = 0;
+  int parsed = 0;
+  try {
+    parsed = std::stoi(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size()) throw std::invalid_argument(option + " needs an integer, got '" + value + "'");
+  return parsed;
+}
+
+std::vector<std::string> splitCommas(const std::string& list) {
+  std::vector<std::string> items;
+  std::stringstream stream(list);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string key = argv[i];
+    if (key == "-h" || key == "--help") { o.help = true; continue; }
+    if (key == "-synthetic") { o.synthetic = true; continue; }
+    if (key == "-growth") { o.growth = true; continue; }
+    if (i + 1 >= argc) throw std::invalid_argument("unknown option or missing value: " + key + " (-h for help)");
+    const std::string value = argv[++i];
+    if (key == "-backend") o.backend = value;
+    else if (key == "-threads") o.threads = parseInt(key, value);
+    else if (key == "-runs") o.runs = parseInt(key, value);
+    else if (key == "-configs") o.configs = splitCommas(value);
+    else if (key == "-num_disparities") o.numDisparities = parseInt(key, value);
+    else if (key == "-paths") o.paths = parseInt(key, value);
+    else if (key == "-width") o.width = parseInt(key, value);
+    else if (key == "-height") o.height = parseInt(key, value);
+    else if (key == "-data") o.dataRoot = value;
+    else if (key == "-left") o.left = value;
+    else if (key == "-right") o.right = value;
+    else if (key == "-lidar") o.lidar = value;
+    else throw std::invalid_argument("unknown option: " + key + " (-h for help)");
+  }
+  if (o.runs < 1) throw std::invalid_argument("-runs must be at least 1");
+  if (o.width < 16 || o.height < 16) throw std::invalid_argument("-width and -height must be at least 16");
+  const int filesGiven = !o.left.empty() + !o.right.empty() + !o.lidar.empty();
+  if (filesGiven != 0 && filesGiven != 3) throw std::invalid_argument("-left, -right and -lidar go together");
+  if (filesGiven == 3 && o.synthetic) {
+    throw std::invalid_argument("-synthetic and -left/-right/-lidar exclude each other");
+  }
+  return o;
+}
+
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+/// As the tests find it: -data, else $LIDAR_SGM_DATA, else the ../shared/data of configure time.
+std::string dataRoot(const Options& o) {
+  if (!o.dataRoot.empty()) return o.dataRoot;
+  if (const char* env = std::getenv("LIDAR_SGM_DATA")) return env;
+  return LIDAR_SGM_SHARED_DATA;
+}
+#endif
+
+Frame loadFrame(const Options& o) {
+  if (o.synthetic) return makeSyntheticFrame(o.width, o.height);
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+  if (!o.left.empty()) return loadFileFrame(o.left, o.right, o.lidar);
+  return loadKittiP1Frame(dataRoot(o), kKittiFrame);
+#else
+  throw std::runtime_error(
+      "this lidar_sgm_bench was built without lidar_sgm::io (OpenCV not found), so it cannot read frames; "
+      "run it with -synthetic");
+#endif
+}
+
+// ---------------------------------------------------------------------------------------------
+// Configurations: one row of the table each
+
+struct Config {
+  std::string key;    ///< its name for -configs
+  std::string label;  ///< its row in the table
+  MatchMode mode;     ///< asserted after every frame
+  Parameters params;
+};
+
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+/// Every configuration, fused first: the peak memory printed after it is then that frame's.
+std::vector<Config> allConfigs(const Parameters& base, const Frame& frame) {
+  Parameters paths8 = base;
+  paths8.paths = 8;
+  Parameters half = base;
+  half.scale = 0.5f;
+  // The matcher matches ceil(W/2) x ceil(H/2) with half the disparities at scale 0.5.
+  const std::string halfSize = sizeText((frame.width() + 1) / 2, (frame.height() + 1) / 2);
+  return {
+      {"fused", "fused", MatchMode::Fused, base},
+      {"stereo", "stereo-only", MatchMode::StereoOnly, base},
+      {"lidar", "LiDAR-only", MatchMode::LidarOnly, base},
+      {"paths8", "fused, 8 paths", MatchMode::Fused, paths8},
+      {"half", "fused, half scale (" + halfSize + ", " + std::to_string(base.numDisparities / 2) + " disp.)",
+       MatchMode::Fused, half},
+  };
+}
+
+/// The configurations -configs names, in allConfigs()' order; each validated now, so that a bad
+/// value stops the bench before minutes of timing rather than after.
+std::vector<Config> selectConfigs(const std::vector<Config>& all, const std::vector<std::string>& keys) {
+  for (const std::string& key : keys) {
+    bool known = false;
+    for (const Config& c : all) known = known || c.key == key;
+    if (!known) {
+      throw std::invalid_argument("-configs: unknown configuration '" + key +
+                                  "'; known: fused,stereo,lidar,paths8,half");
     }
   }
-  f.lidar = lidar_sgm::LidarPoints(width, height, samples);
-  return f;
+  std::vector<Config> selected;
+  for (const Config& c : all) {
+    bool wanted = keys.empty();
+    for (const std::string& key : keys) wanted = wanted || c.key == key;
+    if (!wanted) continue;
+    const std::string problem = validationError(c.params);
+    if (!problem.empty()) throw std::invalid_argument("configuration " + c.key + ": " + problem);
+    selected.push_back(c);
+  }
+  return selected;
+}
+
+/// A matcher of the backend the settings block names: Matcher::create resolves "auto" the same
+/// way, but the check keeps the table honest if that ever changes.
+std::unique_ptr<Matcher> createMatcher(Backend requested, const Parameters& params) {
+  std::unique_ptr<Matcher> matcher = Matcher::create(requested, params);
+  if (matcher->backend() != resolve(requested)) {
+    throw std::logic_error("asked for backend " + toString(resolve(requested)) + ", got " +
+                           toString(matcher->backend()));
+  }
+  return matcher;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output
+
+std::string ms(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), value >= 100.0 ? "%.1f" : "%.2f", value);
+  return text;
+}
+
+void printSettings(const Options& o, const Frame& frame, Backend backend, const Parameters& base,
+                   const std::vector<Config>& configs) {
+  const unsigned hardware = std::thread::hardware_concurrency();
+  std::printf("lidar_sgm_bench (%s build)\n", LIDAR_SGM_BENCH_BUILD_TYPE);
+  std::printf("  cpu:          %s, %u hardware threads\n", cpuModel().c_str(), hardware);
+  std::printf("  isa:          %s (chosen at run time by the cpu backend%s)\n", simdTarget().c_str(),
+              backend == Backend::Cpu ? "" : ", which this run does not use");
+  std::printf("  backend:      %s -> %s\n", o.backend.c_str(), toString(backend).c_str());
+  std::printf("  threads:      %d (-threads %d%s)%s\n", effectiveThreads(base), o.threads,
+              o.threads == 0 ? " = the hardware's" : "",
+              backend == Backend::CpuRef ? ", but cpu_ref runs on one" : "");
+  std::printf("  input:        %s\n", frame.source.c_str());
+  for (const auto& file : frame.files) std::printf("    %-6s      %s\n", file.first.c_str(), file.second.c_str());
+  std::printf("  image:        %s, 8-bit gray; %zu LiDAR points (%.2f %% of the pixels)\n",
+              sizeText(frame.width(), frame.height()).c_str(), frame.lidar.size(),
+              100.0 * static_cast<double>(frame.lidar.size()) / (static_cast<double>(frame.width()) * frame.height()));
+  std::printf("  disparities:  %d (from %d)\n", base.numDisparities, base.minDisparity);
+  std::printf("  paths:        %d (8 in the \"fused, 8 paths\" row)\n", base.paths);
+  std::printf("  mode:         ");
+  for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());
+  std::printf("\n  timing:       median of %d frames after %d warm-up frames, per configuration\n", o.runs, kWarmups);
+}
+
+struct Row {
+  std::string label;
+  Measurement m;
+  bool halfScale;
+};
+
+void printTable(const std::vector<Row>& rows) {
+  std::printf("\n| config | frame ms |");
+  for (const StageColumn& c : stageColumns()) std::printf(" %s |", c.name);
+  std::printf(" rescale |\n| --- | ---: |");
+  for (std::size_t i = 0; i < stageColumns().size(); ++i) std::printf(" ---: |");
+  std::printf(" ---: |\n");
+  for (const Row& r : rows) {
+    std::printf("| %s | %s |", r.label.c_str(), ms(r.m.frameMs).c_str());
+    for (const StageColumn& c : stageColumns()) std::printf(" %s |", ms(r.m.stages.*c.member).c_str());
+    std::printf(" %s |\n", r.halfScale ? ms(r.m.rescaleMs).c_str() : "-");
+  }
+  std::printf("\nStage columns: Matcher::lastTimings() in ms, medians; frame ms: wall clock around compute(). "
+              "rescale: Matcher::lastRescaleMs(), the 2x2 downscale of the inputs and the upscale of the "
+              "disparity at half scale (in frame ms, not in the stages).\n");
+}
+
+#ifdef LIDAR_SGM_BENCH_HAVE_OPENCV
+std::optional<double> frameMsOf(const std::vector<Row>& rows, const std::string& label) {
+  for (const Row& r : rows) {
+    if (r.label == label) return r.m.frameMs;
+  }
+  return std::nullopt;
+}
+
+/// OpenCV's SGBM on the same pair, timed the same way, and our frame time relative to it.
+void compareWithOpenCv(const Options& o, const Frame& frame, const Parameters& base, const std::vector<Row>& rows) {
+  SgbmSettings settings;
+  settings.numDisparities = base.numDisparities;  // the same search range as ours
+  const int threads = effectiveThreads(base);
+  std::printf("\nOpenCV: %s; %d threads\n", describe(settings).c_str(), threads);
+  const double sgbmMs = timeOpenCvSgbm(frame, settings, threads, o.runs, kWarmups);
+  std::printf("  frame ms: %s (median of %d after %d warm-up frames)\n", ms(sgbmMs).c_str(), o.runs, kWarmups);
+  for (const char* label : {"stereo-only", "fused"}) {
+    if (const std::optional<double> ours = frameMsOf(rows, label)) {
+      std::printf("  ours / OpenCV, %s: %.2f (%s ms / %s ms; < 1: ours is faster)\n", label, *ours / sgbmMs,
+                  ms(*ours).c_str(), ms(sgbmMs).c_str());
+    }
+  }
+}
+#endif
+
+// ---------------------------------------------------------------------------------------------
+// Growth: the fused frame's cost against W*H*D
+
+/// `frame` at `width` x `height`: the real pair resized, or the synthetic frame made at that size.
+Frame frameAtSize(const Frame& frame, int width, int height) {
+  if (frame.synthetic) return makeSyntheticFrame(width, height);
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+  return resizedFrame(frame, width, height);
+#else
+  throw std::logic_error("a real frame without lidar_sgm::io");
+#endif
+}
+
+void printGrowth(const Options& o, const Frame& frame, Backend backend, const Parameters& base) {
+  std::printf("\nGrowth: fused, %s, median of %d frames after %d warm-up; %s\n", toString(backend).c_str(), o.runs,
+              kWarmups, frame.synthetic ? "synthetic frames made at each size" : "the pair resized (INTER_AREA down, "
+              "INTER_LINEAR up), the LiDAR points moved and their disparities scaled with it");
+  std::printf("\n| size | disparities | frame ms | ns per W*H*D |\n| --- | ---: | ---: | ---: |\n");
+  for (const double factor : {0.5, 1.0, 2.0}) {
+    const int width = static_cast<int>(std::lround(frame.width() * factor));
+    const int height = static_cast<int>(std::lround(frame.height() * factor));
+    const Frame sized = frameAtSize(frame, width, height);
+    for (const int disparities : {64, 128}) {
+      Parameters params = base;
+      params.numDisparities = disparities;
+      std::unique_ptr<Matcher> matcher = createMatcher(backend, params);
+      const Measurement m = measureMatcher(*matcher, sized, MatchMode::Fused, o.runs, kWarmups);
+      const double cells = static_cast<double>(width) * height * disparities;
+      std::printf("| %s | %d | %s | %.3f |\n", sizeText(width, height).c_str(), disparities, ms(m.frameMs).c_str(),
+                  m.frameMs * 1e6 / cells);
+      std::fflush(stdout);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+int run(const Options& o) {
+  const Frame frame = loadFrame(o);
+  const Backend backend = resolve(backendFromString(o.backend));
+  if (!isAvailable(backend)) {
+    throw std::runtime_error("backend " + toString(backend) + " is not built into this library");
+  }
+  Parameters base;
+  base.numDisparities = o.numDisparities;
+  base.paths = o.paths;
+  base.threads = o.threads;
+  validate(base);
+  const std::vector<Config> configs = selectConfigs(allConfigs(base, frame), o.configs);
+
+  printSettings(o, frame, backend, base, configs);
+  std::printf("  memory:       peak RSS after loading, before the first frame: %.1f MiB\n\n", peakRssMiB());
+  std::fflush(stdout);
+
+  std::vector<Row> rows;
+  for (const Config& c : configs) {
+    std::unique_ptr<Matcher> matcher = createMatcher(backend, c.params);
+    const Measurement m = measureMatcher(*matcher, frame, c.mode, o.runs, kWarmups);
+    std::printf("  %-40s %s ms\n", c.label.c_str(), ms(m.frameMs).c_str());
+    if (c.key == "fused") {
+      // Printed before any other configuration runs, so it is the fused full-size frame's.
+      std::printf("  memory: peak RSS after the fused frames: %.1f MiB\n", peakRssMiB());
+    }
+    std::fflush(stdout);
+    rows.push_back({c.label, m, c.params.scale != 1.0f});
+  }
+  printTable(rows);
+#ifdef LIDAR_SGM_BENCH_HAVE_OPENCV
+  compareWithOpenCv(o, frame, base, rows);
+#else
+  std::printf("\nOpenCV: not found at build time, no StereoSGBM comparison\n");
+#endif
+  if (o.growth) printGrowth(o, frame, backend, base);
+  return 0;
 }
 
 }  // namespace
+}  // namespace bench
+}  // namespace lidar_sgm
 
 int main(int argc, char** argv) {
-  int width = 1242, height = 375, runs = 5;
-  std::string backendName = "cpu_ref", mode = "fused";
-  lidar_sgm::Parameters params;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i];
-    const std::string value = argv[i + 1];
-    if (key == "-width") width = std::stoi(value);
-    else if (key == "-height") height = std::stoi(value);
-    else if (key == "-runs") runs = std::stoi(value);
-    else if (key == "-backend") backendName = value;
-    else if (key == "-mode") mode = value;
-    else if (key == "-num_disparities") params.numDisparities = std::stoi(value);
-    else if (key == "-paths") params.paths = std::stoi(value);
-    else {
-      std::fprintf(stderr, "usage: %s [-width 1242] [-height 375] [-runs 5] [-backend cpu_ref] "
-                   "[-mode fused|stereo|lidar] [-num_disparities 128] [-paths 4]\n", argv[0]);
-      return 1;
-    }
-  }
   try {
-    auto matcher = lidar_sgm::Matcher::create(lidar_sgm::backendFromString(backendName), params);
-    const Frame frame = makeFrame(width, height);
-    Image<std::int16_t> out(width, height);
-    const bool stereo = mode != "lidar";
-    const bool withLidar = mode != "stereo";
-    std::printf("lidar_sgm_bench\n  machine: %u hardware threads\n  image: %dx%d, disparities %d, paths %d\n"
-                "  backend: %s, mode: %s, runs: %d (+1 warm-up)\n",
-                std::thread::hardware_concurrency(), width, height, params.numDisparities, params.paths,
-                lidar_sgm::toString(matcher->backend()).c_str(), mode.c_str(), runs);
-    std::vector<double> total, census, stereoCost, costs, aggregate, select, lr, med;
-    for (int r = 0; r <= runs; ++r) {
-      const auto start = std::chrono::steady_clock::now();
-      matcher->compute(frame.left.view(), stereo ? lidar_sgm::GrayImageView(frame.right.view()) : lidar_sgm::GrayImageView(),
-                       withLidar ? &frame.lidar : nullptr, out.view());
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      if (r == 0) continue;
-      const lidar_sgm::StageTimings& t = matcher->lastTimings();
-      total.push_back(ms);
-      census.push_back(t.census);
-      stereoCost.push_back(t.censusCost);
-      costs.push_back(t.lidarCost + t.fuseCosts);
-      aggregate.push_back(t.aggregatePaths);
-      select.push_back(t.selectDisparity);
-      lr.push_back(t.leftRightCheck);
-      med.push_back(t.medianFilter);
+    const lidar_sgm::bench::Options options = lidar_sgm::bench::parseOptions(argc, argv);
+    if (options.help) {
+      lidar_sgm::bench::printUsage(argv[0]);
+      return 0;
     }
-    std::printf("  median ms: frame %.1f | census %.1f  censusCost %.1f  lidarCost+fuse %.1f  aggregatePaths %.1f  select %.1f  "
-                "lr-check %.1f  median %.1f\n",
-                median(total), median(census), median(stereoCost), median(costs), median(aggregate), median(select), median(lr), median(med));
+    return lidar_sgm::bench::run(options);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "Error: %s\n", e.what());
+    std::fprintf(stderr, "lidar_sgm_bench: %s\n", e.what());
     return 1;
   }
-  return 0;
 }

@@ -32,7 +32,7 @@ echo "== Stereo-only SGM (no LiDAR), for comparison"
 
 echo
 echo "Results in $out:"
-echo "  dense_fused.pcd dense_lidar.pcd                  dense XYZRGB clouds, LiDAR frame (binary-compressed PCD;"
+echo "  dense_fused.pcd dense_lidar.pcd                  dense XYZRGB clouds, LiDAR frame (binary PCD;"
 echo "                                                   view with pcl_viewer from Debian's pcl-tools, or CloudCompare)"
 echo "  fused.png lidar.png stereo.png                   KITTI disparity (uint16, disparity*256, 0 = invalid)"
 echo "  fused_color.png lidar_color.png stereo_color.png color pictures of the disparity (invalid = black)"

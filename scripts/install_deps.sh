@@ -8,6 +8,7 @@ packages=(
   libopencv-dev                # io and tools: imgcodecs, imgproc
   libgtest-dev libgmock-dev    # tests
   libeigen3-dev                # geometry
+  libhwy-dev                   # the fast cpu backend: SIMD with runtime dispatch (Highway)
   libpcl-dev                   # the PCL class, cloud files, lidar_sgm_densify
   nlohmann-json3-dev           # lidar_sgm_eval's JSON results
 )

@@ -9,7 +9,7 @@ namespace apps {
 const std::set<std::string>& sgmValueOptions() {
   static const std::set<std::string> options{"alpha", "sigma", "lidar_cost_cap", "num_disparities", "min_disparity",
                                              "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
-                                             "backend", "lidar_coverage_rows"};
+                                             "backend", "lidar_coverage_rows", "scale", "threads"};
   return options;
 }
 
@@ -20,7 +20,7 @@ const std::set<std::string>& sgmFlagOptions() {
 
 std::string sgmOptionsHelp() {
   const Parameters d;
-  char text[3000];
+  char text[3600];
   std::snprintf(text, sizeof(text),
                 "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
                 "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
@@ -38,9 +38,14 @@ std::string sgmOptionsHelp() {
                 "  -census 9x7|cs9x7        census window: full or centre-symmetric (default: 9x7)\n"
                 "  -stereo_cost_without_lidar  full C_S where no LiDAR point is (default: the paper's (1-alpha)*C_S)\n"
                 "  -lidar_coverage_rows R   fused LR check spares pixels with a LiDAR point within +-R rows (default: %d)\n"
-                "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto)\n",
+                "  -scale 1|0.5             match at full or half resolution (0.5: the paper's fast mode; needs\n"
+                "                           -num_disparities a multiple of 32 and an even -min_disparity; the\n"
+                "                           disparity and cloud keep the full size) (default: %g)\n"
+                "  -threads N               matcher threads, 0 = all hardware threads; never changes the result\n"
+                "                           (default: %d)\n"
+                "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto, the fastest built)\n",
                 d.alpha, d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
-                d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows);
+                d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows, d.scale, d.threads);
   return text;
 }
 
@@ -61,6 +66,8 @@ Parameters parametersFrom(const Arguments& args) {
   p.medianSize = args.integer("median", p.medianSize);
   p.stereoCostWithoutLidar = args.has("stereo_cost_without_lidar");
   p.lidarCoverageRows = args.integer("lidar_coverage_rows", p.lidarCoverageRows);
+  p.scale = static_cast<float>(args.number("scale", p.scale));
+  p.threads = args.integer("threads", p.threads);
   const std::string census = args.text("census", "9x7");
   if (census == "9x7") {
     p.censusType = CensusType::Census9x7;
@@ -71,6 +78,25 @@ Parameters parametersFrom(const Arguments& args) {
   }
   validate(p);
   return p;
+}
+
+Backend backendFrom(const Arguments& args) {
+  const std::string name = args.text("backend", "auto");
+  Backend backend = Backend::Auto;
+  try {
+    backend = backendFromString(name);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("option -backend: ") + e.what());
+  }
+  if (!isAvailable(backend)) {
+    std::string built;
+    for (Backend b : {Backend::CpuRef, Backend::Cpu, Backend::Cuda}) {
+      if (isAvailable(b)) built += ", " + toString(b);
+    }
+    throw std::invalid_argument("option -backend: " + name + " is not built into this library (available: auto" +
+                                built + ")");
+  }
+  return backend;
 }
 
 std::set<std::string> joined(std::set<std::string> a, const std::set<std::string>& b) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/arguments.hpp"
+#include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/core/parameters.hpp"
 
 namespace lidar_sgm {
@@ -17,6 +18,9 @@ const std::set<std::string>& sgmFlagOptions();
 std::string sgmOptionsHelp();
 /// Parameters from the options, validated (std::invalid_argument names the bad one).
 Parameters parametersFrom(const Arguments& args);
+/// The -backend option (default auto), checked against the backends built into this library, so
+/// that a tool refuses it before reading any file.
+Backend backendFrom(const Arguments& args);
 /// The union of two option sets.
 std::set<std::string> joined(std::set<std::string> a, const std::set<std::string>& b);
 

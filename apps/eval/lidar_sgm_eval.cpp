@@ -45,7 +45,11 @@ void printHelp(const char* program) {
       "  -p3_sets LIST      comma-separated subset of clear64,rain64,clear128 (default: all three;\n"
       "                     clear64 has the third camera for Triple-SGM)\n"
       "  -alpha_step S      alpha sweep step in (0, 1] (default: 0.1)\n"
-      "  -threads N         frames evaluated in parallel (default: all cores; results do not depend on it)\n"
+      "  -threads N         threads in all, 0 = all hardware threads (default: 0): frames run in parallel and\n"
+      "                     each frame's matcher gets an equal share of the rest; results do not depend on it\n"
+      "  -scale 1|0.5       match the LiDAR-SGM methods at full or half resolution (0.5: the paper's fast\n"
+      "                     mode; each frame's search range is rounded up to a multiple of 32) (default: 1)\n"
+      "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n"
       "  -no_pictures       skip the per-frame pictures\n"
       "  and every SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the LiDAR-SGM methods\n"
       "  -h                 this help\n",
@@ -83,18 +87,18 @@ eval::DisparityMetrics score(const EvalFrame& f, const Image<std::int16_t>& d) {
 }
 
 FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, const std::vector<double>& alphas,
-                  const Parameters& base) {
+                  const Parameters& base, Backend backend) {
   FrameRun run;
   run.result.dataset = frame.dataset;
   run.result.frame = frame.name;
   for (const Method& m : methods) {
-    MethodOutput out = runMethod(m, frame, base);
+    MethodOutput out = runMethod(m, frame, base, backend);
     run.result.methods.push_back({m.name(), score(frame, out.disparity), out.milliseconds});
     run.disparities[m.name()] = std::move(out.disparity);
   }
   for (double alpha : alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
-    MethodOutput out = runMethod(fused, frame, base);
+    MethodOutput out = runMethod(fused, frame, base, backend);
     run.sweep.emplace_back(alpha, score(frame, out.disparity));
     if (std::abs(alpha - 0.7) < 1e-9) {
       run.result.methods.push_back({fused.name(), run.sweep.back().second, out.milliseconds});
@@ -143,10 +147,13 @@ void writePicture(const std::string& dir, const EvalFrame& f, const FrameRun& ru
   }
 }
 
-/// Runs every frame of `group` on `threads` threads (each frame is independent, so the result
-/// does not depend on the thread count), then assembles the protocol result.
+/// Runs the frames of `group` in parallel on up to `threads` threads, each frame's matcher on an
+/// equal share of them (each frame is independent, and the matchers' results do not depend on
+/// their thread count, so neither does the result), then assembles the protocol result.
 ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, int threads, const std::string& pictures,
-                        const Parameters& base) {
+                        Parameters base, Backend backend) {
+  const int workers = std::max(1, std::min(threads, static_cast<int>(group.frames.size())));
+  base.threads = std::max(1, threads / workers);
   std::vector<FrameRun> runs(group.frames.size());
   std::atomic<std::size_t> next{0};
   std::mutex printMutex;
@@ -155,7 +162,7 @@ ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, i
     for (std::size_t i = next++; i < group.frames.size(); i = next++) {
       try {
         apps::Timer timer;
-        runs[i] = runFrame(group.frames[i], group.methods, alphas, base);
+        runs[i] = runFrame(group.frames[i], group.methods, alphas, base, backend);
         if (!pictures.empty()) writePicture(pictures, group.frames[i], runs[i]);
         std::lock_guard<std::mutex> lock(printMutex);
         std::printf("  %s / %s [done, %.0f ms]\n", group.frames[i].dataset.c_str(), group.frames[i].name.c_str(),
@@ -167,7 +174,7 @@ ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, i
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (int t = 0; t < workers; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   for (const std::string& e : errors) {
     if (!e.empty()) throw std::runtime_error(group.name + ", frame " + e);
@@ -287,7 +294,7 @@ int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
       apps::joined(apps::sgmValueOptions(),
-                   {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step", "threads"}),
+                   {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
       apps::joined(apps::sgmFlagOptions(), {"h", "help", "no_pictures"}));
   if (args.has("h") || args.has("help")) {
     printHelp(argv[0]);
@@ -295,12 +302,13 @@ int run(int argc, char** argv) {
   }
   const std::string root = args.text("data", LIDAR_SGM_DEFAULT_DATA_ROOT);
   const std::string out = args.text("out", "out/eval");
-  // The matcher parameters of every LiDAR-SGM method (alpha is the method's; numDisparities the frame's).
+  // The matcher parameters of every LiDAR-SGM method (alpha is the method's; numDisparities the
+  // frame's; threads are shared out by runGroup).
   const Parameters base = apps::parametersFrom(args);
+  const Backend backend = apps::backendFrom(args);
   const double step = args.number("alpha_step", 0.1);
   if (!(step > 0.0 && step <= 1.0)) throw std::invalid_argument("option -alpha_step: must be in (0, 1]");
-  int threads = args.integer("threads", static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
-  if (threads < 1) throw std::invalid_argument("option -threads: must be >= 1");
+  const int threads = effectiveThreads(base);  // -threads, validated with the SGM options
   std::vector<double> alphas;
   for (int i = 0; i * step <= 1.0 + 1e-9; ++i) alphas.push_back(std::min(1.0, std::round(i * step * 1000) / 1000));
   if (std::find_if(alphas.begin(), alphas.end(), [](double a) { return std::abs(a - 0.7) < 1e-9; }) == alphas.end()) {
@@ -322,18 +330,26 @@ int run(int argc, char** argv) {
 
   std::vector<ProtocolResult> results;
   std::string markdown = "# lidar_sgm_eval results\n\nGenerated by `lidar_sgm_eval`; every figure is in results.json.\n";
+  char settings[160];
+  std::snprintf(settings, sizeof(settings), "\nLiDAR-SGM methods: backend %s, matched at scale %g%s.\n",
+                toString(resolve(backend)).c_str(), base.scale,
+                base.scale == 1.0f ? " (full resolution)" : " (half resolution, disparities brought back to full)");
+  markdown += settings;
   for (const Group& g : groups) {
     if (g.frames.empty()) continue;
     apps::Timer timer;
     std::printf("%s: %zu frames\n", g.name.c_str(), g.frames.size());
-    results.push_back(runGroup(g, alphas, threads, pictures, base));
+    results.push_back(runGroup(g, alphas, threads, pictures, base, backend));
     io::writeImageAtomically(out + "/plots/alpha_sweep_" + slug(g.name) + ".png", sweepPlot(results.back()));
     markdown += "\n## " + g.name + "\n\n" + g.description + ". Plot: `plots/alpha_sweep_" + slug(g.name) +
                 ".png`.\n\n" + markdownTable(results.back());
     std::printf("%s [done, %.0f ms]\n", g.name.c_str(), timer.elapsedMs());
   }
   writeTextAtomically(out + "/results.md", markdown);
-  writeTextAtomically(out + "/results.json", toJson(results).dump(2));
+  nlohmann::json json = toJson(results);
+  // How the LiDAR-SGM methods ran, so that runs at different scales are never mixed up.
+  json["settings"] = {{"backend", toString(resolve(backend))}, {"scale", base.scale}, {"threads", threads}};
+  writeTextAtomically(out + "/results.json", json.dump(2));
   std::printf("Results in %s: results.md, results.json, plots/, %s\n", out.c_str(), pictures.empty() ? "" : "pictures/");
   return 0;
 }

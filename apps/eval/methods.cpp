@@ -1,11 +1,11 @@
 #include "eval/methods.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
 
 #include "eval/baselines.hpp"
-#include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
@@ -26,9 +26,14 @@ std::string Method::name() const {
   return "?";
 }
 
-MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base) {
+int numDisparitiesAt(int frameNumDisparities, float scale) {
+  if (scale == 1.0f) return frameNumDisparities;
+  return std::min(512, 32 * ((frameNumDisparities + 31) / 32));
+}
+
+MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend) {
   Parameters params = base;
-  params.numDisparities = frame.numDisparities;
+  params.numDisparities = numDisparitiesAt(frame.numDisparities, base.scale);
   params.alpha = static_cast<float>(method.alpha);
   MethodOutput out;
   out.disparity = Image<std::int16_t>(frame.left.cols, frame.left.rows, kInvalidDisparity);
@@ -44,7 +49,7 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
       out.disparity = morphologicalCompletion(frame.lidarSparse, frame.focalBaseline);
       break;
     default: {
-      auto matcher = Matcher::create(Backend::Auto, params);
+      auto matcher = Matcher::create(backend, params);
       const GrayImageView left = io::grayView(frame.left);
       const GrayImageView right = io::grayView(frame.right);
       const LidarPoints* lidar = &frame.lidar;

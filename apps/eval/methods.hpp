@@ -6,6 +6,7 @@
 
 #include "eval/eval_frame.hpp"
 #include "lidar_sgm/core/image.hpp"
+#include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/core/parameters.hpp"
 
 namespace lidar_sgm {
@@ -33,9 +34,17 @@ struct MethodOutput {
   double milliseconds = 0;
 };
 
-/// Runs `method` on `frame` with the project's default parameters (numDisparities from the
-/// frame). Throws std::invalid_argument when the frame lacks what the method needs.
-MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base = {});
+/// Runs `method` on `frame`: the LiDAR-SGM methods with `base` (the tools' SGM options, scale and
+/// threads included) on `backend`, alpha the method's and numDisparities the frame's (rounded
+/// up to a multiple of 32 at scale 0.5, which needs one). The baselines ignore `base`. Throws
+/// std::invalid_argument when the frame lacks what the method needs.
+MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base = {},
+                       Backend backend = Backend::Auto);
+
+/// The search range of a frame whose protocol chose `frameNumDisparities`, at `scale`: the
+/// same at scale 1; at 0.5 rounded up to a multiple of 32 (the half-scale search range must be
+/// a multiple of 16), at most 512.
+int numDisparitiesAt(int frameNumDisparities, float scale);
 
 }  // namespace evaluation
 }  // namespace lidar_sgm

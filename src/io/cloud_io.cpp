@@ -17,6 +17,7 @@
 #include <pcl/io/ply_io.h>
 
 #include "atomic_file.hpp"
+#include "binary_pcd_writer.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -315,12 +316,56 @@ void checkWritable(const std::string& path, const pcl::PCLPointCloud2& cloud) {
   }
 }
 
-int writeWithPcl(const std::string& file, const std::string& extension, const pcl::PCLPointCloud2& cloud) {
-  if (extension == ".pcd") return pcl::PCDWriter().writeBinaryCompressed(file, cloud);
+// Floats need 9 significant digits to read back exactly (PCL's default is 8).
+constexpr int kAsciiPrecision = 9;
+
+// Throws std::runtime_error (our writer) or returns PCL's status (0 = success).
+int writeAs(const std::string& file, const std::string& extension, CloudFormat format,
+            const pcl::PCLPointCloud2& cloud) {
+  const Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  const Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  if (extension == ".pcd") {
+    switch (format) {
+      case CloudFormat::Binary: detail::writeBinaryPcd(file, cloud, cloud.data.data()); return 0;
+      case CloudFormat::Compressed: return pcl::PCDWriter().writeBinaryCompressed(file, cloud, origin, orientation);
+      case CloudFormat::Ascii: return pcl::PCDWriter().writeASCII(file, cloud, origin, orientation, kAsciiPrecision);
+    }
+  }
   // range_grid rather than PCL's "camera" element: PCL's own PLY reader reports each camera
   // property as "not handled" on stderr, while both keep an organized cloud's width x height.
-  return pcl::PLYWriter().writeBinary(file, cloud, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(),
-                                      /*use_camera=*/false);
+  if (format == CloudFormat::Ascii) {
+    return pcl::PLYWriter().writeASCII(file, cloud, origin, orientation, kAsciiPrecision, /*use_camera=*/false);
+  }
+  return pcl::PLYWriter().writeBinary(file, cloud, origin, orientation, /*use_camera=*/false);
+}
+
+// Refusals of checkCloudOutput are write errors here (std::runtime_error, as every writeCloud error).
+std::string checkedExtension(const std::string& path, CloudFormat format) {
+  try {
+    checkCloudOutput(path, format);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  return lowerExtension(path);
+}
+
+// Runs `write` (PCL's status, 0 = success, or an exception) on a temporary file that is renamed
+// over `path` only on success and removed otherwise (a writer may leave a partial file).
+template <typename Write>
+void writeAtomically(const std::string& path, Write write) {
+  const std::string temporary = detail::temporaryPathFor(path);
+  int status = -1;
+  try {
+    status = write(temporary);
+  } catch (const std::exception& e) {
+    detail::discardTemporary(temporary);
+    failWrite(path, e.what());
+  }
+  if (status != 0) {
+    detail::discardTemporary(temporary);
+    failWrite(path, "PCL's writer failed (is the directory missing or not writable?)");
+  }
+  detail::commitTemporary(temporary, path);
 }
 
 }  // namespace
@@ -379,28 +424,65 @@ pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path) {
   failRead(path, "unsupported extension '" + extension + "' (accepted: .bin, .pcd, .ply)");
 }
 
-void writeCloud(const std::string& path, const pcl::PCLPointCloud2& cloud) {
+std::string toString(CloudFormat format) {
+  switch (format) {
+    case CloudFormat::Binary: return "binary";
+    case CloudFormat::Compressed: return "compressed";
+    case CloudFormat::Ascii: return "ascii";
+  }
+  return "unknown";
+}
+
+CloudFormat cloudFormatFromString(const std::string& name) {
+  for (CloudFormat format : {CloudFormat::Binary, CloudFormat::Compressed, CloudFormat::Ascii}) {
+    if (toString(format) == name) return format;
+  }
+  throw std::invalid_argument("unknown cloud format '" + name + "': must be binary, compressed or ascii");
+}
+
+void checkCloudOutput(const std::string& path, CloudFormat format) {
   const std::string extension = lowerExtension(path);
   if (extension != ".pcd" && extension != ".ply") {
-    failWrite(path, "unsupported extension '" + extension + "' (accepted: .pcd, .ply)");
+    throw std::invalid_argument("cannot write '" + path + "': unsupported extension '" + extension +
+                                "' (accepted: .pcd, .ply)");
   }
+  if (extension == ".ply" && format == CloudFormat::Compressed) {
+    throw std::invalid_argument("cannot write '" + path +
+                                "' compressed: PLY has no compressed form (write a .pcd, or a binary or ascii PLY)");
+  }
+}
+
+void writeCloud(const std::string& path, const pcl::PCLPointCloud2& cloud, CloudFormat format) {
+  const std::string extension = checkedExtension(path, format);
   checkWritable(path, cloud);
   if (extension == ".ply" && cloud.data.empty()) failWrite(path, "PCL cannot write an empty cloud as PLY (use .pcd)");
-
-  const std::string temporary = detail::temporaryPathFor(path);
-  int status = -1;
-  try {
-    status = writeWithPcl(temporary, extension, cloud);
-  } catch (const std::exception& e) {
-    detail::discardTemporary(temporary);
-    failWrite(path, std::string("PCL: ") + e.what());
-  }
-  if (status != 0) {
-    detail::discardTemporary(temporary);  // PCL may leave a partial file behind
-    failWrite(path, "PCL's writer failed (is the directory missing or not writable?)");
-  }
-  detail::commitTemporary(temporary, path);
+  writeAtomically(path, [&](const std::string& file) { return writeAs(file, extension, format, cloud); });
 }
+
+namespace detail {
+
+void writeCloudRecords(const std::string& path, const pcl::PCLPointCloud2& layout, const std::uint8_t* records,
+                       std::size_t recordCount, CloudFormat format) {
+  const std::string extension = checkedExtension(path, format);
+  if (recordCount != static_cast<std::uint64_t>(layout.width) * layout.height) {
+    failWrite(path, "the cloud is inconsistent: " + std::to_string(recordCount) + " points for " +
+                        std::to_string(layout.width) + " x " + std::to_string(layout.height));
+  }
+  if (extension == ".pcd" && format == CloudFormat::Binary) {
+    if (layout.fields.empty()) failWrite(path, "the cloud has no fields");
+    writeAtomically(path, [&](const std::string& file) {
+      writeBinaryPcd(file, layout, records);
+      return 0;
+    });
+    return;
+  }
+  // PCL's writers need the points in a PCLPointCloud2.
+  pcl::PCLPointCloud2 blob = layout;
+  blob.data.assign(records, records + recordCount * layout.point_step);
+  writeCloud(path, blob, format);
+}
+
+}  // namespace detail
 
 }  // namespace io
 }  // namespace lidar_sgm

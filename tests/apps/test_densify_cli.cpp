@@ -137,7 +137,9 @@ TEST_F(DensifyCli, HelpListsTheOptions) {
   const RunResult r = runTool("-h");
   EXPECT_EQ(r.exitCode, 0);
   for (const char* option : {"-calib", "-left", "-right", "-image_size", "-keep_organized", "-frame", "-max_depth",
-                             "-stride", "-no_occlusion_filter", "-disparity", "-color", "-alpha", "(default: 80)"}) {
+                             "-stride", "-no_occlusion_filter", "-disparity", "-color", "-alpha", "(default: 80)",
+                             "-format binary|compressed|ascii", "(default: binary)", "-scale 1|0.5", "-threads N",
+                             "0 = all hardware threads", "-backend", "cpu_ref, cpu"}) {
     EXPECT_NE(r.output.find(option), std::string::npos) << option;
   }
 }
@@ -154,7 +156,7 @@ TEST_F(DensifyCli, FusedRunWritesDenseColoredPcdAndDisparity) {
   EXPECT_TRUE(hiddenFiles().empty()) << "temporary file left: " << hiddenFiles().front();
 
   const std::string text = readText(p("out.pcd"));
-  EXPECT_NE(text.find("\nDATA binary_compressed"), std::string::npos) << text.substr(0, 300);
+  EXPECT_NE(text.find("\nDATA binary\n"), std::string::npos) << text.substr(0, 300);  // the default, the fastest
   pcl::PointCloud<pcl::PointXYZRGB> cloud;
   ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZRGB>(p("out.pcd"), cloud), 0);
   const std::size_t kept = keptPoints(r.output);
@@ -270,6 +272,84 @@ TEST_F(DensifyCli, SixteenBitPairMatchesAtFullDepth) {
                 "differ in bit depth");
 }
 
+TEST_F(DensifyCli, HalfScaleKeepsTheFullResolution) {
+  const RunResult r = runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft + " -right " + kRight +
+                              " -scale 0.5 -keep_organized -disparity " + p("d.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("matched at scale 0.5"), std::string::npos) << r.output;
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZRGB>(p("out.pcd"), cloud), 0);
+  EXPECT_EQ(cloud.width, static_cast<std::uint32_t>(kWidth));
+  EXPECT_EQ(cloud.height, static_cast<std::uint32_t>(kHeight));
+  std::size_t valid = 0;
+  for (const auto& q : cloud) valid += std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) ? 1 : 0;
+  EXPECT_GT(valid, std::size_t{kWidth} * kHeight / 2);
+  const cv::Mat disparity = cv::imread(p("d.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(disparity.type(), CV_16UC1);
+  EXPECT_EQ(disparity.cols, kWidth);
+  EXPECT_EQ(disparity.rows, kHeight);
+  EXPECT_GT(cv::countNonZero(disparity), kWidth * kHeight / 2);
+  EXPECT_EQ(fileCount(), 2u);
+}
+
+TEST_F(DensifyCli, ThreadCountNeverChangesTheOutput) {
+  for (const std::string n : {"1", "2"}) {
+    const RunResult r = runTool(kScan + " " + p("t" + n + ".pcd") + " -calib " + kCalib + " -left " + kLeft + " -right " +
+                                kRight + " -threads " + n + " -disparity " + p("t" + n + ".png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  EXPECT_GT(readText(p("t1.pcd")).size(), 100000u);
+  EXPECT_TRUE(readText(p("t1.pcd")) == readText(p("t2.pcd"))) << "the clouds differ";
+  EXPECT_TRUE(readText(p("t1.png")) == readText(p("t2.png"))) << "the disparities differ";
+}
+
+TEST_F(DensifyCli, EveryOutputFormatReadsBackTheSamePoints) {
+  // Every 4th pixel keeps the ASCII files small; organized, so NaN points are written too.
+  const std::string options = " -calib " + kCalib + " -left " + kLeft + " -right " + kRight + " -stride 4 -keep_organized";
+  const struct {
+    const char* file;
+    const char* format;
+    const char* marker;
+    float relative;  // 0: bit for bit
+  } cases[] = {{"b.pcd", "binary", "\nDATA binary\n", 0.0f},
+               {"c.pcd", "compressed", "\nDATA binary_compressed\n", 0.0f},
+               {"a.pcd", "ascii", "\nDATA ascii\n", 0.0f},
+               {"b.ply", "binary", "\nformat binary_little_endian", 0.0f},
+               // PCL's ASCII PLY writer keeps 6 significant digits whatever precision it is given.
+               {"a.ply", "ascii", "\nformat ascii", 5e-6f}};
+  pcl::PointCloud<pcl::PointXYZRGB> reference;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.file);
+    const RunResult r = runTool(kScan + " " + p(c.file) + options + " -format " + c.format);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find(std::string("(") + c.format + ")"), std::string::npos) << r.output;
+    EXPECT_NE(readText(p(c.file)).find(c.marker), std::string::npos) << readText(p(c.file)).substr(0, 300);
+    pcl::PointCloud<pcl::PointXYZRGB> cloud;
+    const bool pcd = std::string(c.file).find(".pcd") != std::string::npos;
+    ASSERT_EQ(pcd ? pcl::io::loadPCDFile(p(c.file), cloud) : pcl::io::loadPLYFile(p(c.file), cloud), 0);
+    if (reference.empty()) {
+      reference = cloud;
+      ASSERT_EQ(reference.width, static_cast<std::uint32_t>((kWidth + 3) / 4));
+      continue;
+    }
+    ASSERT_EQ(cloud.width, reference.width);
+    ASSERT_EQ(cloud.height, reference.height);
+    std::size_t different = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const auto& a = cloud[i];
+      const auto& e = reference[i];
+      const auto near = [&c](float x, float y) { return std::fabs(x - y) <= c.relative * std::fabs(y); };
+      const bool same = std::isnan(e.x) ? std::isnan(a.x) && std::isnan(a.y) && std::isnan(a.z)
+                                        : near(a.x, e.x) && near(a.y, e.y) && near(a.z, e.z) &&
+                                              (a.rgba & 0xFFFFFFu) == (e.rgba & 0xFFFFFFu);  // PLY has no alpha
+      different += same ? 0 : 1;
+    }
+    EXPECT_EQ(different, 0u);
+  }
+  EXPECT_EQ(fileCount(), 5u);
+  EXPECT_TRUE(hiddenFiles().empty());
+}
+
 TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
   const std::string out = " " + p("out.pcd") + " ";
   const std::string calib = " -calib " + kCalib;
@@ -329,6 +409,16 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
 
   // Parameters.
   expectFailure(kScan + out + calib + pair + " -alpha 1.5", "alpha = 1.5");
+  expectFailure(kScan + out + calib + pair + " -scale 0.7", "invalid parameter scale = 0.7");
+  expectFailure(kScan + out + calib + pair + " -scale half", "option -scale: 'half' is not a finite number");
+  expectFailure(kScan + out + calib + pair + " -threads -1", "invalid parameter threads = -1");
+  expectFailure(kScan + out + calib + pair + " -threads 257", "invalid parameter threads = 257");
+  expectFailure(kScan + out + calib + pair + " -scale 0.5 -num_disparities 48",
+                "invalid parameter numDisparities = 48: must be a multiple of 32 at scale 0.5");
+  expectFailure(kScan + out + calib + pair + " -scale 0.5 -min_disparity 3", "invalid parameter minDisparity = 3");
+  expectFailure(kScan + out + calib + pair + " -backend gpu", "option -backend: unknown backend 'gpu'");
+  expectFailure(kScan + out + calib + pair + " -format lzf", "option -format: unknown cloud format 'lzf'");
+  expectFailure(kScan + " " + p("out.ply") + calib + pair + " -format compressed", "PLY has no compressed form");
   expectFailure(kScan + out + calib + pair + " -paths 3", "paths = 3");
   expectFailure(kScan + out + calib + pair + " -frame up", "option -frame: 'up' must be lidar or camera");
   expectFailure(kScan + out + calib + pair + " -image_size 12x", "option -image_size: '12x' is not WIDTHxHEIGHT");

@@ -73,7 +73,8 @@ TEST_F(DisparityCli, HelpListsEveryOptionWithItsDefault) {
   EXPECT_EQ(r.exitCode, 0);
   for (const char* option : {"-lidar ", "-lidar_depth", "-fb", "-alpha", "-sigma", "-num_disparities",
                              "-min_disparity", "-paths", "-p1", "-p2", "-uniqueness", "-no_lr_check", "-median",
-                             "-backend", "-color", "(default: 0.7)", "(default: 128)", "(default: 100)"}) {
+                             "-backend", "-color", "(default: 0.7)", "(default: 128)", "(default: 100)", "-scale 1|0.5",
+                             "-threads N", "0 = all hardware threads", "cpu_ref, cpu"}) {
     EXPECT_NE(r.output.find(option), std::string::npos) << option;
   }
 }
@@ -90,6 +91,24 @@ TEST_F(DisparityCli, FusedRunWritesKittiDisparityAndPicture) {
   EXPECT_NEAR(out.at<std::uint16_t>(30, 50) / 256.0, 8.5, 0.5);
   EXPECT_EQ(cv::imread(p("color.png")).channels(), 3);
   EXPECT_EQ(fileCount(), 6u) << "temporary files left behind";
+}
+
+TEST_F(DisparityCli, HalfScaleAndThreadsKeepTheFullSizeAndTheResult) {
+  const std::string inputs = p("left.png") + " " + p("right.png") + " ";
+  const std::string lidar = " -lidar " + p("sparse.png") + " -num_disparities 32";
+  const RunResult half = runTool(inputs + p("half.png") + lidar + " -scale 0.5");
+  ASSERT_EQ(half.exitCode, 0) << half.output;
+  EXPECT_NE(half.output.find("matched at scale 0.5"), std::string::npos) << half.output;
+  const cv::Mat out = cv::imread(p("half.png"), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(out.cols, 97);  // odd sizes too: the last column and row are covered
+  EXPECT_EQ(out.rows, 61);
+  EXPECT_NEAR(out.at<std::uint16_t>(30, 50) / 256.0, 8.5, 1.0);
+  for (const std::string n : {"1", "2"}) {
+    const RunResult r = runTool(inputs + p("t" + n + ".png") + lidar + " -threads " + n);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  EXPECT_EQ(cv::countNonZero(cv::imread(p("t1.png"), cv::IMREAD_UNCHANGED) !=
+                             cv::imread(p("t2.png"), cv::IMREAD_UNCHANGED)), 0);
 }
 
 TEST_F(DisparityCli, TwoFilesMeanLidarOnly) {
@@ -111,7 +130,10 @@ TEST_F(DisparityCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(p("left.png") + " " + p("out.png"), "needs -lidar or -lidar_depth");
   expectFailure(lr + p("out.png") + " -lidar " + p("left.png"), "16-bit single-channel");
   expectFailure(lr + p("out.png") + " -lidar_depth " + p("sparse.png"), "needs -fb");
-  expectFailure(lr + p("out.png") + " -backend gpu", "unknown backend 'gpu'");
+  expectFailure(lr + p("out.png") + " -backend gpu", "option -backend: unknown backend 'gpu'");
+  expectFailure(lr + p("out.png") + " -scale 0.7", "scale = 0.7");
+  expectFailure(lr + p("out.png") + " -threads -1", "threads = -1");
+  expectFailure(lr + p("out.png") + " -scale 0.5 -num_disparities 48", "numDisparities = 48");
   expectFailure(lr + p("out.jpg"), "must be a .png file");
   expectFailure(p("left.png") + " " + p("right.png") + " " + p("no_dir/out.png"), "cannot write");
 }

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "eval/methods.hpp"
 #include "eval/protocols.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
@@ -101,9 +102,49 @@ TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheMatchersOwn)
   EXPECT_NE(text.str().find("IP-Basic"), std::string::npos);
 }
 
+TEST_F(EvalCli, HalfScaleRunReportsTheMatchersOwnFiguresAndItsSettings) {
+  const RunResult r = runTool("-protocols P3 -p3_sets rain64 -synth_frames 1 -synth_size 310x94 -alpha_step 1 "
+                              "-scale 0.5 -threads 2 -no_pictures -out " + dir_.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream jsonFile(dir_ / "results.json");
+  const nlohmann::json json = nlohmann::json::parse(jsonFile);
+  EXPECT_EQ(json.at("settings").at("scale").get<double>(), 0.5);
+  EXPECT_EQ(json.at("settings").at("threads").get<int>(), 2);
+
+  evaluation::P3Options options;
+  options.frames = 1;
+  options.rain = true;
+  options.width = 310;
+  options.height = 94;
+  const auto frames = evaluation::loadP3(options);
+  ASSERT_EQ(frames.size(), 1u);
+  const evaluation::EvalFrame& f = frames[0];
+  Parameters params;
+  params.scale = 0.5f;
+  params.numDisparities = evaluation::numDisparitiesAt(f.numDisparities, 0.5f);
+  auto matcher = Matcher::create(Backend::Auto, params);
+  Image<std::int16_t> disparity(f.left.cols, f.left.rows);
+  matcher->compute(io::grayView(f.left), io::grayView(f.right), &f.lidar, disparity.view());
+  const eval::DisparityMetrics fused = eval::evaluateDisparity(disparity.view(), f.groundTruth.view(), f.exclude.view());
+  bool found = false;
+  for (const auto& m : json.at("protocols").at(0).at("frames").at(0).at("methods")) {
+    if (m.at("method") != "LiDAR-SGM (alpha 0.7)") continue;
+    found = true;
+    EXPECT_DOUBLE_EQ(m.at("correct").get<double>(), fused.correct);
+    EXPECT_DOUBLE_EQ(m.at("rmse").get<double>(), fused.rmse);
+  }
+  EXPECT_TRUE(found) << json.dump(2);
+  std::ifstream md(dir_ / "results.md");
+  std::stringstream text;
+  text << md.rdbuf();
+  EXPECT_NE(text.str().find("matched at scale 0.5"), std::string::npos) << text.str();
+}
+
 TEST_F(EvalCli, BadOptionsFailWithAMessage) {
   for (const auto& [args, message] : {std::pair<std::string, std::string>{"-alpha_step 0", "-alpha_step"},
-                                      {"-threads 0", "-threads"},
+                                      {"-threads -1", "threads = -1"},
+                                      {"-scale 0.7", "scale = 0.7"},
+                                      {"-backend gpu", "option -backend"},
                                       {"-synth_size 12", "-synth_size"},
                                       {"-bogus", "unknown option"}}) {
     const RunResult r = runTool(args + " -protocols P3 -out " + dir_.string());

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -315,6 +316,9 @@ struct FrameCase {
   std::string mode;   // "stereo", "lidar", "fused", "triple", "triple_fused"
   std::function<void(Parameters&)> tweak;
 };
+
+// ctest lists a case by its name rather than by the bytes of the struct.
+void PrintTo(const FrameCase& c, std::ostream* os) { *os << c.name; }
 
 std::vector<FrameCase> frameCases() {
   const auto none = [](Parameters&) {};

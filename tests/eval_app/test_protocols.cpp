@@ -12,6 +12,7 @@
 
 #include "common/test_data.hpp"
 #include "eval/lidar_rings.hpp"
+#include "eval/methods.hpp"
 #include "eval/protocols.hpp"
 #include "lidar_sgm/eval/simulated_lidar.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
@@ -134,6 +135,12 @@ TEST(Protocols, NumDisparitiesRule) {
   EXPECT_EQ(numDisparitiesFor(120.0), 128);
   EXPECT_EQ(numDisparitiesFor(124.1), 144);  // KITTI 2012 000001_10
   EXPECT_EQ(numDisparitiesFor(163.0), 176);
+  // Half scale searches half the range, which must stay a multiple of 16: round up to 32.
+  EXPECT_EQ(numDisparitiesAt(144, 1.0f), 144);
+  EXPECT_EQ(numDisparitiesAt(128, 0.5f), 128);
+  EXPECT_EQ(numDisparitiesAt(144, 0.5f), 160);
+  EXPECT_EQ(numDisparitiesAt(176, 0.5f), 192);
+  EXPECT_EQ(numDisparitiesAt(512, 0.5f), 512);
 }
 
 TEST(Protocols, SparseRowSplit) {

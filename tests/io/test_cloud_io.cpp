@@ -467,11 +467,16 @@ TEST_F(CloudIo, UnsupportedExtensionThrowsListingTheAcceptedOnes) {
 
 // ---- writeCloud ---------------------------------------------------------------------------
 
-TEST_F(CloudIo, WrittenPcdIsBinaryCompressedAndKeepsColors) {
+TEST_F(CloudIo, WrittenPcdIsPackedBinaryByDefaultAndKeepsColors) {
   const pcl::PointCloud<pcl::PointXYZRGB> cloud = makeRgbCloud();
   io::writeCloud(path("rgb.pcd"), cloud);
   EXPECT_EQ(fileCount(), 1u);  // no temporary left
-  EXPECT_NE(readText("rgb.pcd").find("\nDATA binary_compressed\n"), std::string::npos);
+  const std::string text = readText("rgb.pcd");
+  EXPECT_NE(text.find("\nFIELDS x y z rgb\n"), std::string::npos) << text.substr(0, 300);
+  const std::size_t data = text.find("\nDATA binary\n");
+  ASSERT_NE(data, std::string::npos) << text.substr(0, 300);
+  // Packed: 16 bytes a point (PCL's PointXYZRGB record has 32, half of it padding).
+  EXPECT_EQ(text.size() - (data + std::string("\nDATA binary\n").size()), 16 * cloud.size());
   pcl::PointCloud<pcl::PointXYZRGB> back;
   ASSERT_EQ(pcl::io::loadPCDFile(path("rgb.pcd"), back), 0);
   ASSERT_EQ(back.size(), cloud.size());
@@ -482,6 +487,113 @@ TEST_F(CloudIo, WrittenPcdIsBinaryCompressedAndKeepsColors) {
     EXPECT_EQ(back[i].rgba, cloud[i].rgba);
   }
   expectSameXyzi(cloud, io::readCloud(path("rgb.pcd")), /*exact=*/true);
+}
+
+TEST_F(CloudIo, BinaryPcdIsTheFilePclsTypedWriterMakes) {
+  pcl::PointCloud<pcl::PointXYZRGB> organized(5, 3);
+  for (std::size_t i = 0; i < organized.size(); ++i) {
+    organized[i] = makeRgbCloud()[i % 7];
+    organized[i].x += static_cast<float>(i);
+  }
+  organized[4].x = organized[4].y = organized[4].z = kNaN;
+  organized.is_dense = false;
+  const pcl::PointCloud<pcl::PointXYZI> xyzi = makeXyziCloud();
+  io::writeCloud(path("ours_rgb.pcd"), organized);
+  io::writeCloud(path("ours_xyzi.pcd"), xyzi);
+  ASSERT_EQ(pcl::PCDWriter().writeBinary(path("pcl_rgb.pcd"), organized), 0);
+  ASSERT_EQ(pcl::PCDWriter().writeBinary(path("pcl_xyzi.pcd"), xyzi), 0);
+  EXPECT_EQ(readText("ours_xyzi.pcd"), readText("pcl_xyzi.pcd"));
+  // The same bytes; only rgb's declared type differs: PCL's typed writer says U, a blob made by
+  // pcl::toPCLPointCloud2 (which we write) says F, as PCL's blob writers do. Both read back alike.
+  std::string ours = readText("ours_rgb.pcd");
+  const std::string theirs = readText("pcl_rgb.pcd");
+  const std::size_t type = ours.find("\nTYPE F F F F\n");
+  ASSERT_NE(type, std::string::npos) << ours.substr(0, 300);
+  ours.replace(type, 14, "\nTYPE F F F U\n");
+  EXPECT_EQ(ours, theirs);
+}
+
+namespace {
+/// x, y, z, r, g, b of every point: bit for bit, or within `relative` (NaN stays NaN; the color
+/// of a NaN point is not kept by PLY, and PLY has no alpha).
+void expectSamePoints(const pcl::PointCloud<pcl::PointXYZRGB>& expected, const pcl::PointCloud<pcl::PointXYZRGB>& actual,
+                      float relative = 0.0f) {
+  ASSERT_EQ(actual.size(), expected.size());
+  EXPECT_EQ(actual.width, expected.width);
+  EXPECT_EQ(actual.height, expected.height);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    if (std::isnan(expected[i].x)) {
+      EXPECT_TRUE(std::isnan(actual[i].x) && std::isnan(actual[i].y) && std::isnan(actual[i].z)) << "point " << i;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const float e = expected[i].data[k];
+      EXPECT_NEAR(actual[i].data[k], e, relative * std::fabs(e)) << "point " << i << " coordinate " << k;
+    }
+    EXPECT_EQ(actual[i].rgba & 0xFFFFFFu, expected[i].rgba & 0xFFFFFFu) << "point " << i;
+  }
+}
+}  // namespace
+
+TEST_F(CloudIo, EveryFormatReadsBackTheSamePoints) {
+  // Organized, with a NaN point and coordinates that need all 9 significant digits.
+  pcl::PointCloud<pcl::PointXYZRGB> cloud(4, 2);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    cloud[i] = makeRgbCloud()[i % 7];
+    cloud[i].x = 1.0f / 3.0f + static_cast<float>(i);
+    cloud[i].y = -123.456789f * static_cast<float>(i + 1);
+  }
+  cloud[6].x = cloud[6].y = cloud[6].z = kNaN;
+  cloud.is_dense = false;
+  const struct {
+    const char* file;
+    io::CloudFormat format;
+    const char* marker;  // what the file's header says
+    float relative;      // 0: bit for bit
+  } cases[] = {{"b.pcd", io::CloudFormat::Binary, "\nDATA binary\n", 0.0f},
+               {"c.pcd", io::CloudFormat::Compressed, "\nDATA binary_compressed\n", 0.0f},
+               {"a.pcd", io::CloudFormat::Ascii, "\nDATA ascii\n", 0.0f},
+               {"b.ply", io::CloudFormat::Binary, "\nformat binary_little_endian 1.0\n", 0.0f},
+               // PCL's ASCII PLY writer keeps 6 significant digits whatever precision it is given.
+               {"a.ply", io::CloudFormat::Ascii, "\nformat ascii 1.0\n", 5e-6f}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.file);
+    io::writeCloud(path(c.file), cloud, c.format);
+    EXPECT_NE(readText(c.file).find(c.marker), std::string::npos) << readText(c.file).substr(0, 300);
+    pcl::PointCloud<pcl::PointXYZRGB> back;
+    const std::string extension = fs::path(c.file).extension().string();
+    ASSERT_EQ(extension == ".pcd" ? pcl::io::loadPCDFile(path(c.file), back) : pcl::io::loadPLYFile(path(c.file), back), 0);
+    expectSamePoints(cloud, back, c.relative);
+    // Our reader too (it drops the color).
+    const pcl::PointCloud<pcl::PointXYZI> xyzi = io::readCloud(path(c.file));
+    ASSERT_EQ(xyzi.size(), cloud.size());
+    EXPECT_NEAR(xyzi[7].y, cloud[7].y, c.relative * std::fabs(cloud[7].y));
+    EXPECT_TRUE(std::isnan(xyzi[6].x));
+  }
+  EXPECT_EQ(fileCount(), 5u);  // no temporary left
+}
+
+TEST_F(CloudIo, CloudFormatNames) {
+  for (io::CloudFormat format : {io::CloudFormat::Binary, io::CloudFormat::Compressed, io::CloudFormat::Ascii}) {
+    EXPECT_EQ(io::cloudFormatFromString(io::toString(format)), format);
+  }
+  EXPECT_EQ(io::toString(io::CloudFormat::Compressed), "compressed");
+  try {
+    io::cloudFormatFromString("lzf");
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'lzf': must be binary, compressed or ascii"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(CloudIo, CompressedPlyIsRefusedBeforeAnythingIsWritten) {
+  EXPECT_THROW(io::checkCloudOutput(path("x.ply"), io::CloudFormat::Compressed), std::invalid_argument);
+  EXPECT_THROW(io::checkCloudOutput(path("x.xyz"), io::CloudFormat::Binary), std::invalid_argument);
+  EXPECT_NO_THROW(io::checkCloudOutput(path("x.PLY"), io::CloudFormat::Ascii));
+  EXPECT_NO_THROW(io::checkCloudOutput(path("x.pcd"), io::CloudFormat::Compressed));
+  expectError([&] { io::writeCloud(path("x.ply"), makeXyziCloud(), io::CloudFormat::Compressed); }, path("x.ply"),
+              "PLY has no compressed form");
+  EXPECT_EQ(fileCount(), 0u);
 }
 
 TEST_F(CloudIo, WrittenPlyIsBinaryAndReadsBack) {
@@ -520,9 +632,13 @@ TEST_F(CloudIo, WrittenOrganizedCloudsKeepTheirLayout) {
 
 TEST_F(CloudIo, WriteIntoMissingDirectoryThrowsAndLeavesNothing) {
   for (const char* name : {"missing_subdir/x.pcd", "missing_subdir/x.ply"}) {
-    expectError([&] { io::writeCloud(path(name), makeXyziCloud()); }, path(name), "cannot write");
-    EXPECT_FALSE(fs::exists(path(name)));
+    for (io::CloudFormat format : {io::CloudFormat::Binary, io::CloudFormat::Ascii}) {
+      expectError([&] { io::writeCloud(path(name), makeXyziCloud(), format); }, path(name), "cannot write");
+      EXPECT_FALSE(fs::exists(path(name)));
+    }
   }
+  expectError([&] { io::writeCloud(path("missing_subdir/x.pcd"), makeXyziCloud(), io::CloudFormat::Compressed); },
+              path("missing_subdir/x.pcd"), "cannot write");
   EXPECT_EQ(fileCount(), 0u);
 }
 
@@ -534,9 +650,12 @@ TEST_F(CloudIo, WriteWithUnsupportedExtensionThrowsAndLeavesNothing) {
 
 TEST_F(CloudIo, EmptyCloudWritesAsPcdButNotAsPly) {
   const pcl::PointCloud<pcl::PointXYZI> empty;
-  io::writeCloud(path("empty.pcd"), empty);
-  const pcl::PointCloud<pcl::PointXYZI> back = io::readCloud(path("empty.pcd"));
-  EXPECT_TRUE(back.empty());
+  for (io::CloudFormat format : {io::CloudFormat::Binary, io::CloudFormat::Compressed, io::CloudFormat::Ascii}) {
+    SCOPED_TRACE(io::toString(format));
+    io::writeCloud(path("empty.pcd"), empty, format);
+    const pcl::PointCloud<pcl::PointXYZI> back = io::readCloud(path("empty.pcd"));
+    EXPECT_TRUE(back.empty());
+  }
   expectError([&] { io::writeCloud(path("empty.ply"), empty); }, path("empty.ply"), "empty cloud");
   EXPECT_EQ(fileCount(), 1u);
 }
@@ -558,8 +677,15 @@ TEST_F(CloudIo, ExistingFileIsReplacedOnlyOnSuccess) {
   broken.data.resize(broken.data.size() - 1);
   expectError([&] { io::writeCloud(path("x.pcd"), broken); }, path("x.pcd"), "inconsistent");
   EXPECT_EQ(readText("x.pcd"), before);
+  // So is a typed cloud whose width x height is not its size (the points are written in place).
+  pcl::PointCloud<pcl::PointXYZI> wrongSize = makeXyziCloud();
+  wrongSize.width = 100;
+  for (io::CloudFormat format : {io::CloudFormat::Binary, io::CloudFormat::Compressed}) {
+    expectError([&] { io::writeCloud(path("x.pcd"), wrongSize, format); }, path("x.pcd"), "inconsistent");
+  }
+  EXPECT_EQ(readText("x.pcd"), before);
 
-  // PCL itself fails: the temporary name (dir/.stem.tmpPID.ext) is taken by a non-empty folder.
+  // The writer itself fails: the temporary name (dir/.stem.tmpPID.ext) is taken by a non-empty folder.
   const fs::path blocker = dir_ / (".x.tmp" + std::to_string(::getpid()) + ".pcd");
   fs::create_directories(blocker / "inside");
   expectError([&] { io::writeCloud(path("x.pcd"), first); }, path("x.pcd"), "cannot write");

@@ -282,6 +282,88 @@ TEST(SGMDensification, FusedWithAStereoPairAsPclImagesOrGrayViewsAgrees) {
   EXPECT_NE(sgm.getLastError().find("no image size"), std::string::npos) << sgm.getLastError();
 }
 
+TEST(SGMDensification, HalfScaleGivesAFullResolutionResult) {
+  const StereoCalibration c = rig();
+  const auto stereo = lidar_sgm::test::makeStereo(c.width, c.height, [](double, double) { return 25.0; });
+  for (const bool fused : {false, true}) {
+    SCOPED_TRACE(fused ? "fused" : "LiDAR-only");
+    SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB> sgm;
+    sgm.setInputCloud(wallScan<pcl::PointXYZI>(c));
+    sgm.setCalibration(c);
+    sgm.setNumDisparities(64);
+    if (fused) sgm.setStereoPair(toRgb(stereo.left), toRgb(stereo.right));
+    sgm.setKeepOrganized(true);
+    sgm.setScale(0.5f);
+    EXPECT_EQ(sgm.getScale(), 0.5f);
+    EXPECT_EQ(sgm.getParameters().scale, 0.5f);
+    pcl::PointCloud<pcl::PointXYZRGB> organized;
+    sgm.filter(organized);
+    ASSERT_TRUE(sgm.getLastError().empty()) << sgm.getLastError();
+    EXPECT_EQ(organized.width, static_cast<std::uint32_t>(c.width));
+    EXPECT_EQ(organized.height, static_cast<std::uint32_t>(c.height));
+    EXPECT_EQ(sgm.getDisparityImage().width(), c.width);
+    EXPECT_EQ(sgm.getDisparityImage().height(), c.height);
+    // The wall is found, at the half-scale's precision (a full-resolution px of 25 is 0.16 m at 4 m).
+    std::size_t valid = 0, onWall = 0;
+    for (const auto& p : organized) {
+      if (!std::isfinite(p.x)) continue;
+      ++valid;
+      onWall += std::abs(cameraDepth(c, p.getVector3fMap()) - kWallDepth) < 0.1 ? 1 : 0;
+    }
+    EXPECT_GT(valid, organized.size() / 2);
+    EXPECT_GT(onWall, valid * 9 / 10);
+  }
+}
+
+TEST(SGMDensification, ParametersReachTheMatcherUnchanged) {
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZ> sgm;
+  lidar_sgm::Parameters params;
+  params.scale = 0.5f;
+  params.threads = 3;
+  params.numDisparities = 96;
+  sgm.setParameters(params);
+  EXPECT_EQ(sgm.getScale(), 0.5f);
+  EXPECT_EQ(sgm.getNumberOfThreads(), 3);
+  EXPECT_EQ(sgm.getNumDisparities(), 96);
+  sgm.setNumberOfThreads(0);
+  EXPECT_EQ(sgm.getParameters().threads, 0);
+  EXPECT_EQ(sgm.getParameters().scale, 0.5f);
+}
+
+TEST(SGMDensification, ThreadCountNeverChangesTheResult) {
+  const StereoCalibration c = rig();
+  const auto stereo = lidar_sgm::test::makeStereo(c.width, c.height, [](double x, double) { return 20.0 + x / 16.0; });
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB> sgm;
+  sgm.setInputCloud(wallScan<pcl::PointXYZI>(c, /*farRight=*/true));
+  sgm.setCalibration(c);
+  sgm.setNumDisparities(64);
+  sgm.setStereoPair(stereo.left.view(), stereo.right.view());
+  for (const float scale : {1.0f, 0.5f}) {
+    SCOPED_TRACE(scale);
+    sgm.setScale(scale);
+    sgm.setNumberOfThreads(1);
+    EXPECT_EQ(sgm.getNumberOfThreads(), 1);
+    pcl::PointCloud<pcl::PointXYZRGB> one;
+    sgm.filter(one);
+    ASSERT_FALSE(one.empty()) << sgm.getLastError();
+    const lidar_sgm::Image<std::int16_t> disparityOne = sgm.getDisparityImage();
+    for (const int threads : {2, 3, 0}) {
+      SCOPED_TRACE(threads);
+      sgm.setNumberOfThreads(threads);
+      pcl::PointCloud<pcl::PointXYZRGB> many;
+      sgm.filter(many);
+      ASSERT_EQ(many.size(), one.size()) << sgm.getLastError();
+      for (int y = 0; y < c.height; ++y) {
+        for (int x = 0; x < c.width; ++x) ASSERT_EQ(sgm.getDisparityImage()(x, y), disparityOne(x, y)) << x << "," << y;
+      }
+      for (std::size_t i = 0; i < one.size(); ++i) {
+        ASSERT_EQ(many[i].getVector3fMap(), one[i].getVector3fMap()) << i;
+        ASSERT_EQ(many[i].rgba, one[i].rgba) << i;
+      }
+    }
+  }
+}
+
 namespace {
 /// Runs `breakIt` on a working setup and checks that filter() clears a filled output and
 /// names `mention` in the error.
@@ -314,6 +396,12 @@ TEST(SGMDensification, BadPreconditionsGiveAnEmptyOutputAndANamedError) {
   expectFailure([](Sgm& s) { s.setAlpha(1.5f); }, "alpha");
   expectFailure([](Sgm& s) { s.setMaxDepth(-1.0); }, "maxDepth");
   expectFailure([](Sgm& s) { s.setPaths(3); }, "paths");
+  expectFailure([](Sgm& s) { s.setScale(0.7f); }, "scale = 0.7");
+  expectFailure([](Sgm& s) { s.setNumberOfThreads(-1); }, "threads = -1");
+  expectFailure([](Sgm& s) {
+    s.setScale(0.5f);
+    s.setNumDisparities(48);
+  }, "numDisparities = 48");
   expectFailure([](Sgm& s) {
     lidar_sgm::Image<std::uint8_t> left(160, 96), right(150, 96);
     s.setStereoPair(left.view(), right.view());

@@ -138,6 +138,24 @@ void PathRowHorizontalT(const std::uint8_t* costRow, int dx, int width, int D, i
   }
 }
 
+// Both horizontal paths of a row at once: left to right at x = j and right to left at
+// x = width - 1 - j. Each walk is one long dependency chain (a pixel needs its predecessor's
+// minimum); interleaving two independent chains keeps the vector units busy.
+template <typename T>
+void PathRowsHorizontalT(const std::uint8_t* costRow, int width, int D, int P1, int P2, T* rightward, T* leftward) {
+  const int slot = pathSlot(D);
+  const auto at = [&](T* row, int x) { return row + static_cast<std::size_t>(x) * slot + 1; };
+  const auto cost = [&](int x) { return costRow + static_cast<std::size_t>(x) * D; };
+  unsigned minRight = PathStart(cost(0), at(rightward, 0), D);
+  unsigned minLeft = PathStart(cost(width - 1), at(leftward, width - 1), D);
+  for (int j = 1; j < width; ++j) {
+    const int xr = j;
+    const int xl = width - 1 - j;
+    minRight = PathStep(cost(xr), at(rightward, xr - 1), minRight, at(rightward, xr), D, P1, P2);
+    minLeft = PathStep(cost(xl), at(leftward, xl + 1), minLeft, at(leftward, xl), D, P1, P2);
+  }
+}
+
 using D16 = hn::CappedTag<std::uint16_t, 16>;
 
 template <typename T>
@@ -200,6 +218,14 @@ void PathRowHorizontal8(const std::uint8_t* c, int dx, int w, int D, int P1, int
 void PathRowHorizontal16(const std::uint8_t* c, int dx, int w, int D, int P1, int P2, std::uint16_t* out) {
   PathRowHorizontalT(c, dx, w, D, P1, P2, out);
 }
+void PathRowsHorizontal8(const std::uint8_t* c, int w, int D, int P1, int P2, std::uint8_t* right,
+                         std::uint8_t* left) {
+  PathRowsHorizontalT(c, w, D, P1, P2, right, left);
+}
+void PathRowsHorizontal16(const std::uint8_t* c, int w, int D, int P1, int P2, std::uint16_t* right,
+                          std::uint16_t* left) {
+  PathRowsHorizontalT(c, w, D, P1, P2, right, left);
+}
 void StorePathSum8(const std::uint8_t* const* paths, int count, int x0, int x1, int D, std::uint8_t* s8,
                    std::uint16_t* s16) {
   StorePathSumT(paths, count, x0, x1, D, s8, s16);
@@ -228,6 +254,8 @@ HWY_EXPORT(PathRowFromPrevious8);
 HWY_EXPORT(PathRowFromPrevious16);
 HWY_EXPORT(PathRowHorizontal8);
 HWY_EXPORT(PathRowHorizontal16);
+HWY_EXPORT(PathRowsHorizontal8);
+HWY_EXPORT(PathRowsHorizontal16);
 HWY_EXPORT(StorePathSum8);
 HWY_EXPORT(StorePathSum16);
 HWY_EXPORT(AddPathRow8);
@@ -254,6 +282,14 @@ void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDi
 void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
                        std::uint16_t* out) {
   HWY_DYNAMIC_DISPATCH(PathRowHorizontal16)(costRow, dx, width, numDisparities, P1, P2, out);
+}
+void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
+                        std::uint8_t* rightward, std::uint8_t* leftward) {
+  HWY_DYNAMIC_DISPATCH(PathRowsHorizontal8)(costRow, width, numDisparities, P1, P2, rightward, leftward);
+}
+void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
+                        std::uint16_t* rightward, std::uint16_t* leftward) {
+  HWY_DYNAMIC_DISPATCH(PathRowsHorizontal16)(costRow, width, numDisparities, P1, P2, rightward, leftward);
 }
 void storePathSum(const std::uint8_t* const* paths, int count, int x0, int x1, int numDisparities,
                   std::uint8_t* stored8, std::uint16_t* stored16) {

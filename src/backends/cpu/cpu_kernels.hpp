@@ -95,6 +95,11 @@ void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDi
                        std::uint8_t* out);
 void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
                        std::uint16_t* out);
+// Both: left to right into `rightward`, right to left into `leftward`, interleaved.
+void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
+                        std::uint8_t* rightward, std::uint8_t* leftward);
+void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
+                        std::uint16_t* rightward, std::uint16_t* leftward);
 // The sum of `count` path rows for x0 .. x1-1 into a stored row (D per pixel, indexed from x0)
 // of either type (the other nullptr); the caller guarantees the sum fits.
 void storePathSum(const std::uint8_t* const* paths, int count, int x0, int x1, int numDisparities,

@@ -49,7 +49,6 @@ struct CpuMatcher::Frame {
   int scale = 1;         // census cost scale: 2 for the 31-bit centre-symmetric census
   int alphaWeight = 0;
   int verticalPaths = 1;  // per sweep: 1 with 4 paths, 3 with 8
-  bool store8 = true;
   bool lrCheck = false;
   int threads = 1;
   bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
@@ -58,7 +57,6 @@ struct CpuMatcher::Frame {
 };
 
 struct CpuMatcher::Worker {
-  std::vector<std::uint8_t> cost;      // this thread's columns of a row: C
   std::vector<std::uint8_t> stereo;    // C_S (fused mode)
   std::vector<std::uint8_t> lidar;     // C_L (fused mode)
   std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
@@ -101,7 +99,6 @@ void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& 
                       : mode == MatchMode::LidarOnly ? params.lidarCostCap
                                                      : std::max(kMaxCensusCost, params.lidarCostCap);
   f.paths8 = pathCostsFit8Bits(maxCost, params.P2);
-  f.store8 = f.verticalPaths * (maxCost + params.P2) <= 255;
   f.lrCheck = mode == MatchMode::StereoOnly ? params.lrCheck
                                             : mode == MatchMode::Fused && params.lrCheck && params.lrCheckWithLidar;
 
@@ -212,12 +209,7 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   if (f.mode == MatchMode::StereoOnly) support_.fill(0);
 
   // Buffers, grown only (no allocation per frame after the first of a size).
-  const std::size_t volume = static_cast<std::size_t>(W) * H * f.D;
-  if (f.store8) {
-    resizeKeep(stored8_, volume);
-  } else {
-    resizeKeep(stored16_, volume);
-  }
+  resizeKeep(cost_, static_cast<std::size_t>(W) * H * f.D);
   const std::size_t rowSlots = static_cast<std::size_t>(W) * slot;
   const std::size_t element = f.paths8 ? 1 : 2;
   const std::size_t rowBytes = rowSlots * element;
@@ -227,18 +219,19 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   const std::size_t layout = (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.D);
   const bool newLayout = layout != pathLayout_;
   pathLayout_ = layout;
-  if (newLayout) {
+  const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows) * 3;
+  if (newLayout || checkpoints_.size() < checkpoints * rowBytes) {
     pathRows_.assign(6 * rowBytes, 0xFF);
-    chunkPaths_.assign(chunkRows * 3 * rowBytes, 0xFF);
+    chunkPaths_.assign(chunkRows * 6 * rowBytes, 0xFF);
+    checkpoints_.assign(checkpoints * rowBytes, 0xFF);
   }
   resizeKeep(pathMins_, 6 * static_cast<std::size_t>(W));
-  resizeKeep(chunkCost_, chunkRows * W * f.D);
-  resizeKeep(chunkMins_, chunkRows * 3 * W);
+  resizeKeep(chunkMins_, chunkRows * 6 * W);
+  resizeKeep(checkpointMins_, checkpoints * W);
   const int threads = std::max(1, std::min(f.threads, W));
   workers_.resize(static_cast<std::size_t>(threads));
   const std::size_t partMax = (static_cast<std::size_t>(W) / threads + 1) * f.D;
   for (Worker& w : workers_) {
-    resizeKeep(w.cost, partMax);
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);
     if (f.up) resizeKeep(w.vertical, partMax);
@@ -297,6 +290,7 @@ void CpuMatcher::sweepUp(const Frame& f) {
   const int H = f.height;
   const int D = f.D;
   const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
+  const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
   const Parameters& p = f.params;
 #pragma omp parallel num_threads(f.threads)
   {
@@ -305,22 +299,25 @@ void CpuMatcher::sweepUp(const Frame& f) {
     const int x0 = partBegin(W, team, t);
     const int x1 = partBegin(W, team, t + 1);
     Worker& w = workers_[static_cast<std::size_t>(t)];
-    const PathT* paths[3];
     for (int i = 0; i < H; ++i) {
       const int y = H - 1 - i;
-      costRange(f, y, x0, x1, w.cost.data(), w);
+      std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
+      costRange(f, y, x0, x1, cost + static_cast<std::size_t>(x0) * D, w);
       for (int k = 0; k < f.verticalPaths; ++k) {
         PathT* current = as<PathT>(pathRows_, (2 * k + i % 2) * rowSlots);
         const PathT* previous = i == 0 ? nullptr : as<PathT>(pathRows_, (2 * k + (i + 1) % 2) * rowSlots);
         std::uint16_t* currentMin = pathMins_.data() + static_cast<std::size_t>(2 * k + i % 2) * W;
         const std::uint16_t* previousMin = pathMins_.data() + static_cast<std::size_t>(2 * k + (i + 1) % 2) * W;
-        pathRowFromPrevious(w.cost.data(), x0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                            current, currentMin);
-        paths[k] = current;
+        pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2, current,
+                            currentMin);
+        // The first row of every chunk but the top one: the sweep down restarts the upward paths
+        // of the chunk above from here.
+        if (y > 0 && y % kChunkRows == 0) {
+          const std::size_t c = static_cast<std::size_t>(y / kChunkRows - 1) * 3 + k;
+          std::copy(current + x0 * slot, current + x1 * slot, as<PathT>(checkpoints_, c * rowSlots) + x0 * slot);
+          std::copy(currentMin + x0, currentMin + x1, checkpointMins_.data() + c * W + x0);
+        }
       }
-      const std::size_t at = (static_cast<std::size_t>(y) * W + x0) * D;
-      storePathSum(paths, f.verticalPaths, x0, x1, D, f.store8 ? stored8_.data() + at : nullptr,
-                   f.store8 ? nullptr : stored16_.data() + at);
       // Diagonal paths read the neighbouring columns of the previous row: wait for them.
       if (f.verticalPaths > 1) {
 #pragma omp barrier
@@ -337,15 +334,13 @@ void CpuMatcher::sweepDown(const Frame& f) {
   const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
   const std::size_t costRowSize = static_cast<std::size_t>(W) * D;
   const Parameters& p = f.params;
-  // Chunk buffers of each parity: kChunkRows cost rows, then the downward paths' rows and minima.
-  const auto chunkCost = [&](int parity, int r) {
-    return chunkCost_.data() + (static_cast<std::size_t>(parity) * kChunkRows + r) * costRowSize;
-  };
+  const auto costRow = [&](int y) { return cost_.data() + static_cast<std::size_t>(y) * costRowSize; };
+  // Chunk buffers of each parity: paths 0-2 downward, 3-5 upward (recomputed), kChunkRows rows each.
   const auto chunkPath = [&](int parity, int k, int r) {
-    return as<PathT>(chunkPaths_, ((static_cast<std::size_t>(parity) * 3 + k) * kChunkRows + r) * rowSlots);
+    return as<PathT>(chunkPaths_, ((static_cast<std::size_t>(parity) * 6 + k) * kChunkRows + r) * rowSlots);
   };
   const auto chunkMin = [&](int parity, int k, int r) {
-    return chunkMins_.data() + ((static_cast<std::size_t>(parity) * 3 + k) * kChunkRows + r) * W;
+    return chunkMins_.data() + ((static_cast<std::size_t>(parity) * 6 + k) * kChunkRows + r) * W;
   };
 #pragma omp parallel num_threads(f.threads)
   {
@@ -354,48 +349,66 @@ void CpuMatcher::sweepDown(const Frame& f) {
     const int x0 = partBegin(W, team, t);
     const int x1 = partBegin(W, team, t + 1);
     Worker& w = workers_[static_cast<std::size_t>(t)];
-    const PathT* paths[5];
+    const PathT* paths[8];
     PathT* rightward = as<PathT>(w.rightward);
     PathT* leftward = as<PathT>(w.leftward);
     for (int chunk = 0; chunk * kChunkRows < H; ++chunk) {
       const int yBegin = chunk * kChunkRows;
       const int rows = std::min(kChunkRows, H - yBegin);
       const int parity = chunk % 2;
-      // Stage 1, this thread's columns: the rows' costs and the downward (and diagonal) paths.
+      // Stage 1, this thread's columns. The upward paths of the chunk's rows again, bottom to top
+      // from the checkpoint the sweep up left below the chunk (the costs were stored, the paths
+      // not: a full volume of them would cost as much memory as the costs).
+      for (int r = rows - 1; r >= 0; --r) {
+        const int y = yBegin + r;
+        for (int k = 0; k < f.verticalPaths; ++k) {
+          const std::size_t c = static_cast<std::size_t>(chunk) * 3 + k;
+          const PathT* previous = y == H - 1 ? nullptr
+                                  : r == rows - 1 ? as<PathT>(checkpoints_, c * rowSlots)
+                                                  : chunkPath(parity, 3 + k, r + 1);
+          const std::uint16_t* previousMin =
+              r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(parity, 3 + k, r + 1);
+          pathRowFromPrevious(costRow(y), 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
+                              chunkPath(parity, 3 + k, r), chunkMin(parity, 3 + k, r));
+        }
+        if (f.verticalPaths > 1) {
+#pragma omp barrier
+        }
+      }
+      // ... then the downward paths, top to bottom, continuing the previous chunk's.
       for (int r = 0; r < rows; ++r) {
         const int y = yBegin + r;
-        costRange(f, y, x0, x1, chunkCost(parity, r) + static_cast<std::size_t>(x0) * D, w);
         for (int k = 0; k < f.verticalPaths; ++k) {
           const PathT* previous = y == 0 ? nullptr
-                                          : r == 0 ? chunkPath(1 - parity, k, kChunkRows - 1)
-                                                   : chunkPath(parity, k, r - 1);
+                                  : r == 0 ? chunkPath(1 - parity, k, kChunkRows - 1)
+                                           : chunkPath(parity, k, r - 1);
           const std::uint16_t* previousMin = r == 0 ? chunkMin(1 - parity, k, kChunkRows - 1) : chunkMin(parity, k, r - 1);
-          pathRowFromPrevious(chunkCost(parity, r), 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1,
-                              p.P2, chunkPath(parity, k, r), chunkMin(parity, k, r));
+          pathRowFromPrevious(costRow(y), 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1, p.P2,
+                              chunkPath(parity, k, r), chunkMin(parity, k, r));
         }
-        // Diagonal paths read the neighbouring columns of the previous row: wait for them.
         if (f.verticalPaths > 1) {
 #pragma omp barrier
         }
       }
 #pragma omp barrier
       // Stage 2, whole rows split among the threads: the horizontal paths need the row's every
-      // cost, then total S and the winners (and the right view's winners, which read S diagonally).
+      // cost, then S (all paths) and the winners, and the right view's winners, which read S
+      // diagonally.
       const int r0 = partBegin(rows, team, t);
       const int r1 = partBegin(rows, team, t + 1);
       for (int r = r0; r < r1; ++r) {
         const int y = yBegin + r;
-        pathRowHorizontal(chunkCost(parity, r), 1, W, D, p.P1, p.P2, rightward);
-        pathRowHorizontal(chunkCost(parity, r), -1, W, D, p.P1, p.P2, leftward);
+        pathRowsHorizontal(costRow(y), W, D, p.P1, p.P2, rightward, leftward);
         int count = 0;
-        for (int k = 0; k < f.verticalPaths; ++k) paths[count++] = chunkPath(parity, k, r);
+        for (int k = 0; k < f.verticalPaths; ++k) {
+          paths[count++] = chunkPath(parity, k, r);
+          paths[count++] = chunkPath(parity, 3 + k, r);
+        }
         paths[count++] = rightward;
         paths[count++] = leftward;
         const auto s0 = Clock::now();
-        const std::size_t at = static_cast<std::size_t>(y) * W * D;
-        sumSelectRow(paths, count, f.store8 ? stored8_.data() + at : nullptr, f.store8 ? nullptr : stored16_.data() + at,
-                     0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel, w.total.data(), rawDisparity_.view().row(y),
-                     bestIndex_.view().row(y));
+        sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
+                     w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y));
         if (f.lrCheck) {
           rightDisparityIndexRow(w.total.data(), W, D, p.minDisparity, w.rightScratch.data(), rightIndex_.view().row(y));
         }

@@ -1,23 +1,25 @@
 #pragma once
-// The fast CPU backend's matcher: the stages of cpu_ref, streamed in two sweeps over the image so
-// that neither the matching-cost volumes nor the per-path volumes are ever materialised.
+// The fast CPU backend's matcher: the stages of cpu_ref, streamed in two sweeps over the image.
 //
-//   census      rows in parallel, into two (three) census images.
-//   sweep up    bottom to top, columns split among threads: the cost C(p, .) of each pixel is
-//               computed on the fly (census cost, LiDAR cost from the points around p, fusion),
-//               the upward paths (1 of 4, 3 of 8) recurse in row buffers, and only their sum is
-//               stored: 8 bits per disparity when it provably fits (4 paths with P2 <= 255 - the
-//               largest cost: the default), else 16.
-//   sweep down  top to bottom in chunks of kChunkRows rows: first (columns split) C of the rows
-//               again - cheaper than storing and re-reading 60 MB on a bandwidth-starved
-//               machine - and the downward paths; then (rows split) the left-to-right and
-//               right-to-left paths, the total S (stored + the rows' paths), winner-takes-all +
-//               sub-pixel and, with the left-right check, the right view's winners. One barrier
-//               per chunk (per row only for the diagonals of 8 paths): lock step per row would
-//               stall whenever another process takes a core.
+//   census      rows in parallel, into census images (the right one also as byte planes).
+//   sweep up    bottom to top, columns split among the threads (no synchronisation with 4
+//               paths): the cost C(p, .) of each pixel - census cost, LiDAR cost from the points
+//               around p, fusion, all on the fly - is stored (8 bits, the only full volume),
+//               and the upward paths (1 of 4, 3 of 8) recurse in row buffers; their state is
+//               kept only at the first row of every chunk of kChunkRows rows (a checkpoint).
+//   sweep down  top to bottom, chunk by chunk: first (columns split) the upward paths of the
+//               chunk's rows again from the checkpoint below it, then the downward paths; then
+//               (rows split) the left-to-right and right-to-left paths, S = the sum of all
+//               paths, winner-takes-all + sub-pixel and, with the left-right check, the right
+//               view's winners. One barrier per chunk (per row only for the diagonals of 8
+//               paths): lock step per row would stall whenever another process takes a core.
 //   LR check, median   rows in parallel.
-// Every sum is of the same non-negative integers in any order, so the result is cpu_ref's bit for
-// bit whatever the thread count.
+//
+// Why this shape: this machine class moves about 8 GB/s, so every full volume costs ~15 ms to
+// write and read back. C is the one volume kept (it costs the most to recompute: 62-bit
+// Hamming distances); the upward paths are recomputed per chunk instead of stored (one path
+// step, cheaper than a second volume). Every sum is of the same non-negative integers in any
+// order, so the result is cpu_ref's bit for bit whatever the thread count.
 
 #include <cstdint>
 #include <vector>
@@ -61,17 +63,17 @@ class CpuMatcher final : public Matcher {
   Image<std::uint64_t> rightCensus_;
   Image<std::uint64_t> upCensus_;
   std::vector<std::uint8_t> rightPlanes_;  // the right census as reversed byte planes, per row
-  std::vector<std::uint8_t> stored8_;    // sum of the upward paths, 8 bits per disparity
-  std::vector<std::uint16_t> stored16_;  // ... or 16 where 8 would not be enough
+  std::vector<std::uint8_t> cost_;       // C of every pixel, from the sweep up to the sweep down
   // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
   // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
   std::vector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
   std::size_t pathLayout_ = 0;
   std::vector<std::uint16_t> pathMins_;
-  static constexpr int kChunkRows = 8;
-  std::vector<std::uint8_t> chunkCost_;     // sweep down: C of a chunk's rows, two parities
-  std::vector<std::uint8_t> chunkPaths_;    // ... the downward paths' rows (slots)
+  static constexpr int kChunkRows = 4;
+  std::vector<std::uint8_t> chunkPaths_;    // sweep down: a chunk's path rows (slots), two parities
   std::vector<std::uint16_t> chunkMins_;    // ... and their minima
+  std::vector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row
+  std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;

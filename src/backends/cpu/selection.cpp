@@ -99,7 +99,9 @@ void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8
     std::uint16_t* S = total + local;
     auto minimum = hn::Set(d16, std::uint16_t{0xFFFF});
     for (int i = 0; i < D; i += N) {
-      auto sum = stored8 != nullptr ? LoadAsU16(stored8 + local + i) : hn::LoadU(d16, stored16 + local + i);
+      auto sum = stored8 != nullptr    ? LoadAsU16(stored8 + local + i)
+                 : stored16 != nullptr ? hn::LoadU(d16, stored16 + local + i)
+                                       : hn::Zero(d16);
       for (int k = 0; k < count; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
       hn::StoreU(sum, d16, S + i);
       minimum = hn::Min(minimum, sum);

@@ -1,0 +1,47 @@
+#include "bench_opencv_sgbm.hpp"
+
+#include <sstream>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+
+#include "bench_timing.hpp"
+
+namespace lidar_sgm {
+namespace bench {
+namespace {
+
+cv::Mat matView(const Image<std::uint8_t>& image) {
+  return cv::Mat(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
+}
+
+}  // namespace
+
+std::string describe(const SgbmSettings& s) {
+  std::ostringstream os;
+  os << "cv::StereoSGBM (OpenCV " << CV_VERSION << "), MODE_SGBM_3WAY, numDisparities " << s.numDisparities
+     << ", blockSize " << s.blockSize << ", P1 " << s.P1 << ", P2 " << s.P2 << ", disp12MaxDiff " << s.disp12MaxDiff
+     << ", preFilterCap " << s.preFilterCap
+     << ", uniquenessRatio " << s.uniquenessRatio << ", speckleWindowSize " << s.speckleWindowSize
+     << ", speckleRange " << s.speckleRange;
+  return os.str();
+}
+
+double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int threads, int runs, int warmups) {
+  // cv::setNumThreads(0) would mean "no threads" to OpenCV, not "all": callers pass the
+  // effective count. Restored afterwards so nothing else in the process is affected.
+  const int previousThreads = cv::getNumThreads();
+  cv::setNumThreads(threads);
+  const cv::Ptr<cv::StereoSGBM> sgbm =
+      cv::StereoSGBM::create(0, s.numDisparities, s.blockSize, s.P1, s.P2, s.disp12MaxDiff, s.preFilterCap,
+                             s.uniquenessRatio, s.speckleWindowSize, s.speckleRange, cv::StereoSGBM::MODE_SGBM_3WAY);
+  const cv::Mat left = matView(frame.left);
+  const cv::Mat right = matView(frame.right);
+  cv::Mat disparity;  // CV_16S, x16 like ours; allocated once, in the warm-up
+  const double ms = medianMs([&] { sgbm->compute(left, right, disparity); }, runs, warmups);
+  cv::setNumThreads(previousThreads);
+  return ms;
+}
+
+}  // namespace bench
+}  // namespace lidar_sgm

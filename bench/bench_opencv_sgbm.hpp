@@ -1,0 +1,34 @@
+#pragma once
+// The peer: OpenCV's cv::StereoSGBM timed on the same pair, the same way; built only with OpenCV.
+
+#include <string>
+
+#include "bench_frame.hpp"
+
+namespace lidar_sgm {
+namespace bench {
+
+/// cv::StereoSGBM's settings: MODE_SGBM_3WAY, block 5, and OpenCV's usual penalties for gray
+/// images (P1 = 8*5*5, P2 = 32*5*5); the rest as lidar_sgm_eval's SGBM baseline (OpenCV's
+/// stereo_match sample), so the bench times what the evaluation scores.
+struct SgbmSettings {
+  int numDisparities = 128;
+  int blockSize = 5;
+  int P1 = 8 * 5 * 5;
+  int P2 = 32 * 5 * 5;
+  int disp12MaxDiff = 1;
+  int preFilterCap = 63;
+  int uniquenessRatio = 10;
+  int speckleWindowSize = 100;
+  int speckleRange = 32;
+};
+
+/// One line naming every setting and the OpenCV version, for the settings block.
+std::string describe(const SgbmSettings& settings);
+
+/// Median milliseconds of cv::StereoSGBM::compute on the frame's pair over `runs` frames after
+/// `warmups`, with OpenCV limited to `threads` threads (>= 1).
+double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& settings, int threads, int runs, int warmups);
+
+}  // namespace bench
+}  // namespace lidar_sgm

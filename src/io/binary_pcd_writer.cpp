@@ -1,0 +1,99 @@
+#include "binary_pcd_writer.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include <pcl/common/io.h>
+#include <pcl/io/pcd_io.h>
+
+namespace lidar_sgm {
+namespace io {
+namespace detail {
+namespace {
+
+/// Bytes copied from each point record: fields that touch in the record form one span
+/// (PointXYZRGB: x y z, then rgb), so a point costs a couple of small copies.
+struct Span {
+  std::size_t from = 0;
+  std::size_t size = 0;
+};
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+
+constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
+
+[[noreturn]] void fail(const std::string& problem) { throw std::runtime_error(problem); }
+
+std::string systemError() { return std::strerror(errno); }
+
+}  // namespace
+
+void writeBinaryPcd(const std::string& file, const pcl::PCLPointCloud2& layout, const std::uint8_t* records) {
+  // PCL's header generator declares exactly the fields and sizes of `packed`.
+  pcl::PCLPointCloud2 packed;
+  packed.width = layout.width;
+  packed.height = layout.height;
+  std::vector<Span> spans;
+  std::size_t step = 0;
+  for (const pcl::PCLPointField& field : layout.fields) {
+    if (field.name == "_") continue;  // PCL's name for padding
+    pcl::PCLPointField packedField = field;
+    packedField.count = std::max<std::uint32_t>(field.count, 1);
+    packedField.offset = static_cast<std::uint32_t>(step);
+    const std::size_t size = static_cast<std::size_t>(pcl::getFieldSize(field.datatype)) * packedField.count;
+    if (size == 0) fail("field '" + field.name + "' has an unsupported type (" + std::to_string(field.datatype) + ")");
+    if (field.offset + size > layout.point_step) {
+      fail("field '" + field.name + "' lies outside the " + std::to_string(layout.point_step) + "-byte point record");
+    }
+    if (!spans.empty() && spans.back().from + spans.back().size == field.offset) {
+      spans.back().size += size;
+    } else {
+      spans.push_back(Span{field.offset, size});
+    }
+    step += size;
+    packed.fields.push_back(packedField);
+  }
+  if (step == 0) fail("the cloud has no fields");
+  packed.point_step = static_cast<std::uint32_t>(step);
+  packed.row_step = static_cast<std::uint32_t>(step * layout.width);
+  const std::string header =
+      pcl::PCDWriter().generateHeaderBinary(packed, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity()) +
+      "DATA binary\n";
+
+  std::unique_ptr<std::FILE, FileCloser> out(std::fopen(file.c_str(), "wb"));
+  if (!out) fail("cannot create the file: " + systemError());
+  // Our buffer is the only one: every fwrite below is one write() of up to 1 MiB.
+  std::setvbuf(out.get(), nullptr, _IONBF, 0);
+  if (std::fwrite(header.data(), 1, header.size(), out.get()) != header.size()) fail(systemError());
+
+  const std::size_t points = std::size_t{layout.width} * layout.height;
+  const std::size_t perChunk = std::max<std::size_t>(1, kBufferBytes / step);
+  std::vector<std::uint8_t> buffer(std::min(perChunk, std::max<std::size_t>(points, 1)) * step);
+  for (std::size_t first = 0; first < points; first += perChunk) {
+    const std::size_t count = std::min(perChunk, points - first);
+    const std::uint8_t* record = records + first * layout.point_step;
+    std::uint8_t* to = buffer.data();
+    for (std::size_t i = 0; i < count; ++i, record += layout.point_step) {
+      for (const Span& span : spans) {
+        std::memcpy(to, record + span.from, span.size);
+        to += span.size;
+      }
+    }
+    const std::size_t bytes = count * step;
+    if (std::fwrite(buffer.data(), 1, bytes, out.get()) != bytes) fail(systemError());
+  }
+  // A full disk may only show when the file is closed.
+  if (std::fclose(out.release()) != 0) fail(systemError());
+}
+
+}  // namespace detail
+}  // namespace io
+}  // namespace lidar_sgm
