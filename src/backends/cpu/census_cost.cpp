@@ -16,25 +16,57 @@
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
 
-#include "backends/cpu/fusion-inl.h"
-
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
 namespace cpu {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// One pixel's C_S for every d: per byte of the census string, XOR with the right pixels' bytes
-// and a 4-bit-table population count, summed. The left byte broadcasts are made once per pixel
-// and the loop over the bytes is unrolled, with two accumulators against one long add chain.
-template <int kBytes, class DU8>
-HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int D,
+// How a pixel's C_S leaves the kernel: as it is, or fused (Eq. 5) with the pixel's C_L, or with
+// C_L = 0 where no LiDAR point is near.
+enum class Fusion { None, WithLidar, ZeroLidar };
+
+// Eq. 5 on a vector of cost bytes, in 16-bit halves: (w * C_L + (256 - w) * C_S + 128) >> 8, as
+// fusion-inl.h, but on registers: fusing a block just computed avoids storing it and reading it
+// back (a store-to-load round trip per 16 bytes).
+template <class DU8>
+HWY_INLINE hn::Vec<DU8> FuseVector(DU8 d, hn::Vec<DU8> stereo, hn::Vec<DU8> lidar, bool withLidar, int alphaWeight256) {
+#if HWY_TARGET == HWY_SCALAR  // one lane, no halves
+  const int cL = withLidar ? hn::GetLane(lidar) : 0;
+  return hn::Set(d, static_cast<std::uint8_t>((alphaWeight256 * cL + (256 - alphaWeight256) * hn::GetLane(stereo) + 128) >> 8));
+#else
+  const hn::Half<DU8> dh;
+  const hn::Rebind<std::uint16_t, decltype(dh)> d16;
+  const hn::Rebind<std::int16_t, decltype(dh)> di16;
+  const auto wL = hn::Set(d16, static_cast<std::uint16_t>(alphaWeight256));
+  const auto wS = hn::Set(d16, static_cast<std::uint16_t>(256 - alphaWeight256));
+  const auto half = hn::Set(d16, std::uint16_t{128});
+  const auto fuseHalf = [&](auto s8, auto l8) {
+    auto weighted = hn::Add(hn::Mul(hn::PromoteTo(d16, s8), wS), half);
+    if (withLidar) weighted = hn::Add(weighted, hn::Mul(hn::PromoteTo(d16, l8), wL));
+    return hn::DemoteTo(dh, hn::BitCast(di16, hn::ShiftRight<8>(weighted)));
+  };
+  const auto lo = fuseHalf(hn::LowerHalf(dh, stereo), hn::LowerHalf(dh, lidar));
+  const auto hi = fuseHalf(hn::UpperHalf(dh, stereo), hn::UpperHalf(dh, lidar));
+  return hn::Combine(d, hi, lo);
+#endif
+}
+
+// One pixel's C_S for disparities [i0, i0 + n): per byte of the census string, XOR with the right
+// pixels' bytes and a 4-bit-table population count, summed. The left byte broadcasts are made
+// once per pixel and the loop over the bytes is unrolled, with two accumulators against one long
+// add chain. Disparities outside [dBegin, dEnd) have no right counterpart and cost
+// kNoCounterpartCensusCost. Then the fusion, if any, while the block is in registers.
+template <int kBytes, Fusion kFusion, class DU8>
+HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int i0,
+                             int n, int dBegin, int dEnd, const std::uint8_t* lidar, int alphaWeight256,
                              std::uint8_t* out) {
   using V = hn::Vec<DU8>;
   V lb[kBytes];
   for (int k = 0; k < kBytes; ++k) lb[k] = hn::Set(d, static_cast<std::uint8_t>(left >> (8 * k)));
+  const V noCounterpart = hn::Set(d, static_cast<std::uint8_t>(kNoCounterpartCensusCost));
   const int N = static_cast<int>(hn::Lanes(d));
-  for (int i = 0; i < D; i += N) {
+  for (int i = i0; i < i0 + n; i += N) {
     V sumEven = hn::Zero(d);
     V sumOdd = hn::Zero(d);
     for (int k = 0; k < kBytes; ++k) {
@@ -49,7 +81,31 @@ HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* plan
     V sum = hn::Add(sumEven, sumOdd);
     // The centre-symmetric string has half the bits (4 bytes); doubling keeps both types in [0, 62].
     if (kBytes == 4) sum = hn::Add(sum, sum);
+    if (i < dBegin || i + N > dEnd) {
+      const auto inside = hn::AndNot(hn::FirstN(d, static_cast<std::size_t>(std::clamp(dBegin - i, 0, N))),
+                                     hn::FirstN(d, static_cast<std::size_t>(std::clamp(dEnd - i, 0, N))));
+      sum = hn::IfThenElse(inside, sum, noCounterpart);
+    }
+    if (kFusion == Fusion::WithLidar) {
+      sum = FuseVector(d, sum, hn::LoadU(d, lidar + i), true, alphaWeight256);
+    } else if (kFusion == Fusion::ZeroLidar) {
+      sum = FuseVector(d, sum, sum, false, alphaWeight256);
+    }
     hn::StoreU(sum, d, out + i);
+  }
+}
+
+template <int kBytes, Fusion kFusion>
+HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int D, int dBegin,
+                          int dEnd, const std::uint8_t* lidar, int alphaWeight256, std::uint8_t* out) {
+  const hn::CappedTag<std::uint8_t, 32> d32;
+  const hn::CappedTag<std::uint8_t, 16> d16;
+  const int N = static_cast<int>(hn::Lanes(d32));
+  const int whole = D / N * N;
+  HammingPixel<kBytes, kFusion>(d32, left, planes, planeStride, 0, whole, dBegin, dEnd, lidar, alphaWeight256, out);
+  if (whole < D) {
+    HammingPixel<kBytes, kFusion>(d16, left, planes, planeStride, whole, D - whole, dBegin, dEnd, lidar,
+                                  alphaWeight256, out);
   }
 }
 
@@ -58,27 +114,22 @@ template <int kBytes>
 void CensusCostRowBytes(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
                         std::uint8_t* cost) {
-  const hn::CappedTag<std::uint8_t, 32> d32;
-  const hn::CappedTag<std::uint8_t, 16> d16;
-  const int N = static_cast<int>(hn::Lanes(d32));
   for (int x = x0; x < x1; ++x) {
     std::uint8_t* c = cost + static_cast<std::size_t>(x - x0) * D;
     // Plane index of d = 0: the right pixel xr = x - minDisparity sits at width - 1 - xr.
     const std::uint8_t* planes = rightPlanes + pad + (width - 1 - x + minDisparity);
-    const int whole = D / N * N;
-    HammingPixel<kBytes>(d32, leftRow[x], planes, planeStride, whole, c);
-    if (whole < D) HammingPixel<kBytes>(d16, leftRow[x], planes + whole, planeStride, D - whole, c + whole);
-    // Disparities whose right pixel lies outside the image have no counterpart.
+    // Disparities whose right pixel lies inside the image: [dBegin, dEnd).
     const int dBegin = std::clamp(x - minDisparity - width + 1, 0, D);
     const int dEnd = std::clamp(x - minDisparity + 1, dBegin, D);
-    if (dBegin > 0) std::memset(c, kNoCounterpartCensusCost, static_cast<std::size_t>(dBegin));
-    if (dEnd < D) std::memset(c + dEnd, kNoCounterpartCensusCost, static_cast<std::size_t>(D - dEnd));
-    if (fusion == nullptr) continue;
-    if (fusion->touched[x] != 0) {
-      FuseBytes(fusion->lidar + static_cast<std::size_t>(x - x0) * D, c, static_cast<std::size_t>(D),
-                fusion->alphaWeight256, c);
-    } else if (!fusion->stereoCostWithoutLidar) {
-      FuseBytes(nullptr, c, static_cast<std::size_t>(D), fusion->alphaWeight256, c);  // C_L = 0: no point near
+    if (fusion == nullptr || (fusion->touched[x] == 0 && fusion->stereoCostWithoutLidar)) {
+      CostPixel<kBytes, Fusion::None>(leftRow[x], planes, planeStride, D, dBegin, dEnd, nullptr, 0, c);
+    } else if (fusion->touched[x] != 0) {
+      CostPixel<kBytes, Fusion::WithLidar>(leftRow[x], planes, planeStride, D, dBegin, dEnd,
+                                           fusion->lidar + static_cast<std::size_t>(x - x0) * D,
+                                           fusion->alphaWeight256, c);
+    } else {
+      CostPixel<kBytes, Fusion::ZeroLidar>(leftRow[x], planes, planeStride, D, dBegin, dEnd, nullptr,
+                                           fusion->alphaWeight256, c);
     }
   }
 }

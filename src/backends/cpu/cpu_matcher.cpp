@@ -209,7 +209,7 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   if (f.mode == MatchMode::StereoOnly) support_.fill(0);
 
   // Buffers, grown only (no allocation per frame after the first of a size).
-  resizeKeep(cost_, static_cast<std::size_t>(W) * H * f.D);
+  cost_.reserve(static_cast<std::size_t>(W) * H * f.D);
   const std::size_t rowSlots = static_cast<std::size_t>(W) * slot;
   const std::size_t element = f.paths8 ? 1 : 2;
   const std::size_t rowBytes = rowSlots * element;

@@ -26,6 +26,7 @@
 
 #include "backends/common/cost_volume.hpp"
 #include "backends/common/lidar_cost_table.hpp"
+#include "backends/cpu/huge_buffer.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
 namespace lidar_sgm {
@@ -63,7 +64,7 @@ class CpuMatcher final : public Matcher {
   Image<std::uint64_t> rightCensus_;
   Image<std::uint64_t> upCensus_;
   std::vector<std::uint8_t> rightPlanes_;  // the right census as reversed byte planes, per row
-  std::vector<std::uint8_t> cost_;       // C of every pixel, from the sweep up to the sweep down
+  HugeBuffer<std::uint8_t> cost_;        // C of every pixel, from the sweep up to the sweep down
   // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
   // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
   std::vector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
