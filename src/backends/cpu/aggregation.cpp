@@ -21,6 +21,8 @@
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
 
+#include "backends/cpu/simd-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
 namespace cpu {
@@ -156,17 +158,6 @@ void PathRowsHorizontalT(const std::uint8_t* costRow, int width, int D, int P1, 
   }
 }
 
-using D16 = hn::CappedTag<std::uint16_t, 16>;
-
-template <typename T>
-HWY_INLINE hn::Vec<D16> LoadAsU16(const T* p) {
-  const D16 d16;
-  if constexpr (sizeof(T) == 1) {
-    return hn::PromoteTo(d16, hn::LoadU(hn::Rebind<std::uint8_t, D16>(), p));
-  } else {
-    return hn::LoadU(d16, p);
-  }
-}
 
 template <typename T>
 void StorePathSumT(const T* const* paths, int count, int x0, int x1, int D, std::uint8_t* stored8,

@@ -27,7 +27,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 enum class Fusion { None, WithLidar, ZeroLidar };
 
 // Eq. 5 on a vector of cost bytes, in 16-bit halves: (w * C_L + (256 - w) * C_S + 128) >> 8, as
-// fusion-inl.h, but on registers: fusing a block just computed avoids storing it and reading it
+// simd-inl.h's FuseBytes, but on registers: fusing a block just computed avoids storing it and reading it
 // back (a store-to-load round trip per 16 bytes).
 template <class DU8>
 HWY_INLINE hn::Vec<DU8> FuseVector(DU8 d, hn::Vec<DU8> stereo, hn::Vec<DU8> lidar, bool withLidar, int alphaWeight256) {

@@ -1,5 +1,5 @@
 // Cost fusion (Eq. 5), fast CPU backend: alpha * C_L + (1 - alpha) * C_S in 16-bit lanes, with
-// cpu_ref's weights out of 256 and rounding (fusion-inl.h).
+// cpu_ref's weights out of 256 and rounding (simd-inl.h).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "backends/cpu/fusion.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -11,7 +11,7 @@
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
 
-#include "backends/cpu/fusion-inl.h"
+#include "backends/cpu/simd-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {

@@ -16,13 +16,14 @@
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
 
+#include "backends/cpu/simd-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
 namespace cpu {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-using D16 = hn::CappedTag<std::uint16_t, 16>;
 
 void RightDisparityIndexRowImpl(const std::uint16_t* totalRow, int width, int D, int minDisparity,
                                 std::uint16_t* scratch, std::int16_t* rightIndex) {

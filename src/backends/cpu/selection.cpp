@@ -11,13 +11,14 @@
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
 
+#include "backends/cpu/simd-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
 namespace cpu {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-using D16 = hn::CappedTag<std::uint16_t, 16>;
 
 // The first d with the smallest S[d] (ties go to the smaller d, as in cpu_ref).
 HWY_INLINE int FirstMinimum(const std::uint16_t* HWY_RESTRICT S, int D) {
@@ -71,16 +72,6 @@ void SelectRowImpl(const std::uint16_t* total, int x0, int x1, int D, int minDis
   for (int x = x0; x < x1; ++x) {
     const std::uint16_t* S = total + static_cast<std::size_t>(x - x0) * D;
     SelectPixel(S, FirstMinimum(S, D), x, D, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex);
-  }
-}
-
-template <typename T>
-HWY_INLINE hn::Vec<D16> LoadAsU16(const T* p) {
-  const D16 d16;
-  if constexpr (sizeof(T) == 1) {
-    return hn::PromoteTo(d16, hn::LoadU(hn::Rebind<std::uint8_t, D16>(), p));
-  } else {
-    return hn::LoadU(d16, p);
   }
 }
 

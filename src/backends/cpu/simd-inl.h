@@ -1,11 +1,10 @@
-// Eq. 5 on a run of cost bytes, for every Highway target: shared by fusion.cpp (the fuseCosts
-// stage) and census_cost.cpp (which fuses each pixel's C_S while it is still in the L1 cache).
+// Small SIMD helpers shared by several kernel files, for every Highway target.
 // Per-target header: included once per target, hence the toggled guard instead of #pragma once.
-#if defined(LIDAR_SGM_CPU_FUSION_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef LIDAR_SGM_CPU_FUSION_INL_H_
-#undef LIDAR_SGM_CPU_FUSION_INL_H_
+#if defined(LIDAR_SGM_CPU_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef LIDAR_SGM_CPU_SIMD_INL_H_
+#undef LIDAR_SGM_CPU_SIMD_INL_H_
 #else
-#define LIDAR_SGM_CPU_FUSION_INL_H_
+#define LIDAR_SGM_CPU_SIMD_INL_H_
 #endif
 
 #include <hwy/highway.h>
@@ -18,6 +17,22 @@ namespace lidar_sgm {
 namespace cpu {
 namespace HWY_NAMESPACE {
 
+// Up to 16 uint16 lanes: D is a multiple of 16, so every width up to 16 divides it.
+using D16 = hwy::HWY_NAMESPACE::CappedTag<std::uint16_t, 16>;
+
+// Lanes(D16()) path costs or sums from p, as uint16 (8-bit path costs promoted).
+template <typename T>
+HWY_INLINE hwy::HWY_NAMESPACE::Vec<D16> LoadAsU16(const T* p) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  const D16 d16;
+  if constexpr (sizeof(T) == 1) {
+    return hn::PromoteTo(d16, hn::LoadU(hn::Rebind<std::uint8_t, D16>(), p));
+  } else {
+    return hn::LoadU(d16, p);
+  }
+}
+
+// Eq. 5 on a run of cost bytes (fusion.cpp's fuseCosts stage):
 // fused[i] = (w * lidar[i] + (256 - w) * stereo[i] + 128) >> 8, cpu_ref's weights and rounding;
 // lidar == nullptr stands for C_L = 0 (no point near the pixel). The sum fits 16 bits because
 // the weights add up to 256: at most 255 * 256 + 128. `fused` may be `stereo`.
@@ -48,4 +63,4 @@ HWY_INLINE void FuseBytes(const std::uint8_t* lidar, const std::uint8_t* stereo,
 }  // namespace lidar_sgm
 HWY_AFTER_NAMESPACE();
 
-#endif  // LIDAR_SGM_CPU_FUSION_INL_H_
+#endif  // LIDAR_SGM_CPU_SIMD_INL_H_
