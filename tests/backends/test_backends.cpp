@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -427,6 +428,39 @@ INSTANTIATE_TEST_SUITE_P(Backends, BackendFrames,
                          ::testing::Combine(::testing::Values("cpu", "cuda"), ::testing::Values(1, 2, 7),
                                             ::testing::ValuesIn(frameCases())),
                          frameName);
+
+// One matcher through frames of changing size, search range, path count and cost bounds: buffers
+// kept from an earlier frame (larger, smaller, another layout) must never leak into a result.
+TEST(BackendReuse, OneMatcherThroughChangingFramesMatchesCpuRef) {
+  for (const std::string name : {"cpu", "cuda"}) {
+    if (!isAvailable(backendFromString(name))) continue;
+    std::unique_ptr<Matcher> backend;
+    struct Step {
+      int width, height, numDisparities, paths, P2, cap;
+    };
+    for (const Step& step : {Step{131, 61, 64, 4, 100, 62}, Step{97, 41, 32, 8, 100, 62}, Step{131, 61, 64, 8, 4000, 255},
+                             Step{64, 40, 16, 4, 100, 62}, Step{131, 61, 64, 4, 100, 62}}) {
+      Parameters params;
+      params.numDisparities = step.numDisparities;
+      params.paths = step.paths;
+      params.P2 = step.P2;
+      params.lidarCostCap = step.cap;
+      params.threads = 2;
+      if (!backend) {
+        backend = Matcher::create(backendFromString(name), params);
+      } else {
+        backend->setParameters(params);
+      }
+      const BackendScene scene = makeBackendScene(step.width, step.height, 0, step.numDisparities, 33);
+      Image<std::int16_t> expected(step.width, step.height), actual(step.width, step.height);
+      Matcher::create(Backend::CpuRef, params)->compute(scene.left8.view(), scene.right8.view(), &scene.lidar,
+                                                        expected.view());
+      backend->compute(scene.left8.view(), scene.right8.view(), &scene.lidar, actual.view());
+      EXPECT_TRUE(sameImages(expected, actual)) << name << " " << step.width << "x" << step.height << " D "
+                                                << step.numDisparities << " paths " << step.paths;
+    }
+  }
+}
 
 TEST(BackendRegistry, AutoIsTheFastestBuiltBackend) {
   if (isAvailable(Backend::Cpu)) {

@@ -219,14 +219,14 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   const std::size_t layout = (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.D);
   const bool newLayout = layout != pathLayout_;
   pathLayout_ = layout;
-  const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows) * 3;
-  if (newLayout || checkpoints_.size() < checkpoints * rowBytes) {
-    pathRows_.assign(6 * rowBytes, 0xFF);
-    chunkPaths_.assign(chunkRows * 6 * rowBytes, 0xFF);
-    checkpoints_.assign(checkpoints * rowBytes, 0xFF);
-  }
+  // Per chunk: each vertical path downward and upward (2 * verticalPaths rows of kChunkRows).
+  const std::size_t chunkPathRows = chunkRows * 2 * static_cast<std::size_t>(f.verticalPaths);
+  const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows) * f.verticalPaths;
+  if (newLayout) pathRows_.assign(6 * rowBytes, 0xFF);
+  if (newLayout || chunkPaths_.size() < chunkPathRows * rowBytes) chunkPaths_.assign(chunkPathRows * rowBytes, 0xFF);
+  if (newLayout || checkpoints_.size() < checkpoints * rowBytes) checkpoints_.assign(checkpoints * rowBytes, 0xFF);
   resizeKeep(pathMins_, 6 * static_cast<std::size_t>(W));
-  resizeKeep(chunkMins_, chunkRows * 6 * W);
+  resizeKeep(chunkMins_, chunkPathRows * W);
   resizeKeep(checkpointMins_, checkpoints * W);
   const int threads = std::max(1, std::min(f.threads, W));
   workers_.resize(static_cast<std::size_t>(threads));
@@ -313,7 +313,7 @@ void CpuMatcher::sweepUp(const Frame& f) {
         // The first row of every chunk but the top one: the sweep down restarts the upward paths
         // of the chunk above from here.
         if (y > 0 && y % kChunkRows == 0) {
-          const std::size_t c = static_cast<std::size_t>(y / kChunkRows - 1) * 3 + k;
+          const std::size_t c = static_cast<std::size_t>(y / kChunkRows - 1) * f.verticalPaths + k;
           std::copy(current + x0 * slot, current + x1 * slot, as<PathT>(checkpoints_, c * rowSlots) + x0 * slot);
           std::copy(currentMin + x0, currentMin + x1, checkpointMins_.data() + c * W + x0);
         }
@@ -335,12 +335,14 @@ void CpuMatcher::sweepDown(const Frame& f) {
   const std::size_t costRowSize = static_cast<std::size_t>(W) * D;
   const Parameters& p = f.params;
   const auto costRow = [&](int y) { return cost_.data() + static_cast<std::size_t>(y) * costRowSize; };
-  // Chunk buffers of each parity: paths 0-2 downward, 3-5 upward (recomputed), kChunkRows rows each.
+  // Chunk buffers of each parity: paths [0, vp) downward, [vp, 2 vp) upward (recomputed),
+  // kChunkRows rows each (vp = verticalPaths).
+  const int vp = f.verticalPaths;
   const auto chunkPath = [&](int parity, int k, int r) {
-    return as<PathT>(chunkPaths_, ((static_cast<std::size_t>(parity) * 6 + k) * kChunkRows + r) * rowSlots);
+    return as<PathT>(chunkPaths_, ((static_cast<std::size_t>(parity) * 2 * vp + k) * kChunkRows + r) * rowSlots);
   };
   const auto chunkMin = [&](int parity, int k, int r) {
-    return chunkMins_.data() + ((static_cast<std::size_t>(parity) * 6 + k) * kChunkRows + r) * W;
+    return chunkMins_.data() + ((static_cast<std::size_t>(parity) * 2 * vp + k) * kChunkRows + r) * W;
   };
 #pragma omp parallel num_threads(f.threads)
   {
@@ -362,14 +364,14 @@ void CpuMatcher::sweepDown(const Frame& f) {
       for (int r = rows - 1; r >= 0; --r) {
         const int y = yBegin + r;
         for (int k = 0; k < f.verticalPaths; ++k) {
-          const std::size_t c = static_cast<std::size_t>(chunk) * 3 + k;
+          const std::size_t c = static_cast<std::size_t>(chunk) * f.verticalPaths + k;
           const PathT* previous = y == H - 1 ? nullptr
                                   : r == rows - 1 ? as<PathT>(checkpoints_, c * rowSlots)
-                                                  : chunkPath(parity, 3 + k, r + 1);
+                                                  : chunkPath(parity, vp + k, r + 1);
           const std::uint16_t* previousMin =
-              r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(parity, 3 + k, r + 1);
+              r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(parity, vp + k, r + 1);
           pathRowFromPrevious(costRow(y), 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                              chunkPath(parity, 3 + k, r), chunkMin(parity, 3 + k, r));
+                              chunkPath(parity, vp + k, r), chunkMin(parity, vp + k, r));
         }
         if (f.verticalPaths > 1) {
 #pragma omp barrier
@@ -402,7 +404,7 @@ void CpuMatcher::sweepDown(const Frame& f) {
         int count = 0;
         for (int k = 0; k < f.verticalPaths; ++k) {
           paths[count++] = chunkPath(parity, k, r);
-          paths[count++] = chunkPath(parity, 3 + k, r);
+          paths[count++] = chunkPath(parity, vp + k, r);
         }
         paths[count++] = rightward;
         paths[count++] = leftward;
