@@ -1,6 +1,8 @@
 #include "bench_opencv_sgbm.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <vector>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
@@ -41,6 +43,35 @@ double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int threads, in
   const double ms = medianMs([&] { sgbm->compute(left, right, disparity); }, runs, warmups);
   cv::setNumThreads(previousThreads);
   return ms;
+}
+
+PairedTiming pairWithOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int threads,
+                                const std::function<void()>& ours, int runs, int warmups) {
+  const int previousThreads = cv::getNumThreads();
+  cv::setNumThreads(threads);
+  const cv::Ptr<cv::StereoSGBM> sgbm =
+      cv::StereoSGBM::create(0, s.numDisparities, s.blockSize, s.P1, s.P2, s.disp12MaxDiff, s.preFilterCap,
+                             s.uniquenessRatio, s.speckleWindowSize, s.speckleRange, cv::StereoSGBM::MODE_SGBM_3WAY);
+  const cv::Mat left = matView(frame.left);
+  const cv::Mat right = matView(frame.right);
+  cv::Mat disparity;
+  std::vector<double> oursMs, sgbmMs, ratios;
+  for (int i = 0; i < warmups + runs; ++i) {
+    const double a = wallClockMs(ours);
+    const double b = wallClockMs([&] { sgbm->compute(left, right, disparity); });
+    if (i < warmups) continue;
+    oursMs.push_back(a);
+    sgbmMs.push_back(b);
+    ratios.push_back(a / b);
+  }
+  cv::setNumThreads(previousThreads);
+  PairedTiming t;
+  t.oursMs = median(oursMs);
+  t.sgbmMs = median(sgbmMs);
+  t.ratio = median(ratios);
+  t.ratioMin = *std::min_element(ratios.begin(), ratios.end());
+  t.ratioMax = *std::max_element(ratios.begin(), ratios.end());
+  return t;
 }
 
 }  // namespace bench

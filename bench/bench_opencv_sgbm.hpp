@@ -1,6 +1,7 @@
 #pragma once
 // The peer: OpenCV's cv::StereoSGBM timed on the same pair, the same way; built only with OpenCV.
 
+#include <functional>
 #include <string>
 
 #include "bench_frame.hpp"
@@ -29,6 +30,20 @@ std::string describe(const SgbmSettings& settings);
 /// Median milliseconds of cv::StereoSGBM::compute on the frame's pair over `runs` frames after
 /// `warmups`, with OpenCV limited to `threads` threads (>= 1).
 double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& settings, int threads, int runs, int warmups);
+
+/// Ours against OpenCV frame by frame: `runs` pairs (after `warmups` of each), one of our frames
+/// (`ours`) then one of cv::StereoSGBM, so that both see the same machine state; the ratio is
+/// taken per pair. On a shared VM whose speed drifts by +-10 % between minutes, separate medians
+/// measured one after the other are not comparable; pairs are.
+struct PairedTiming {
+  double oursMs = 0;   ///< median of our frames
+  double sgbmMs = 0;   ///< median of OpenCV's frames
+  double ratio = 0;    ///< median of ours / OpenCV over the pairs
+  double ratioMin = 0;
+  double ratioMax = 0;
+};
+PairedTiming pairWithOpenCvSgbm(const Frame& frame, const SgbmSettings& settings, int threads,
+                                const std::function<void()>& ours, int runs, int warmups);
 
 }  // namespace bench
 }  // namespace lidar_sgm
