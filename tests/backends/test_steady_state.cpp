@@ -26,8 +26,10 @@ namespace lidar_sgm {
 namespace {
 
 TEST(SteadyState, SecondFrameOfASizeAllocatesNothing) {
+  int tested = 0;
   for (const std::string name : {"cpu", "cuda"}) {
     if (!isAvailable(backendFromString(name))) continue;
+    ++tested;
     for (const int paths : {4, 8}) {
       for (const bool stereo : {true, false}) {
         Parameters params;
@@ -48,6 +50,7 @@ TEST(SteadyState, SecondFrameOfASizeAllocatesNothing) {
       }
     }
   }
+  if (tested == 0) GTEST_SKIP() << "no fast backend is built (cpu_ref makes no such promise)";
 }
 
 }  // namespace
