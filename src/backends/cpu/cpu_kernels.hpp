@@ -133,8 +133,8 @@ void leftRightCheckRow(SelectedDisparity disparity, ImageView<const std::int16_t
                        ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
                        bool keepNoCounterpart, int y);
 
-// median.cpp: one output row of the median filter.
-void medianRow(ImageView<const std::int16_t> in, int size, int y, std::int16_t* out);
+// median.cpp: one output row of the median filter; `columns`: 5 * width int16 of scratch.
+void medianRow(ImageView<const std::int16_t> in, int size, int y, std::int16_t* columns, std::int16_t* out);
 
 }  // namespace cpu
 }  // namespace lidar_sgm
