@@ -17,6 +17,11 @@ cv::Mat matView(const Image<std::uint8_t>& image) {
   return cv::Mat(image.height(), image.width(), CV_8UC1, const_cast<std::uint8_t*>(image.data()));
 }
 
+cv::Ptr<cv::StereoSGBM> createSgbm(const SgbmSettings& s) {
+  return cv::StereoSGBM::create(0, s.numDisparities, s.blockSize, s.P1, s.P2, s.disp12MaxDiff, s.preFilterCap,
+                                s.uniquenessRatio, s.speckleWindowSize, s.speckleRange, cv::StereoSGBM::MODE_SGBM_3WAY);
+}
+
 }  // namespace
 
 std::string describe(const SgbmSettings& s) {
@@ -34,9 +39,7 @@ double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int threads, in
   // effective count. Restored afterwards so nothing else in the process is affected.
   const int previousThreads = cv::getNumThreads();
   cv::setNumThreads(threads);
-  const cv::Ptr<cv::StereoSGBM> sgbm =
-      cv::StereoSGBM::create(0, s.numDisparities, s.blockSize, s.P1, s.P2, s.disp12MaxDiff, s.preFilterCap,
-                             s.uniquenessRatio, s.speckleWindowSize, s.speckleRange, cv::StereoSGBM::MODE_SGBM_3WAY);
+  const cv::Ptr<cv::StereoSGBM> sgbm = createSgbm(s);
   const cv::Mat left = matView(frame.left);
   const cv::Mat right = matView(frame.right);
   cv::Mat disparity;  // CV_16S, x16 like ours; allocated once, in the warm-up
@@ -49,9 +52,7 @@ PairedTiming pairWithOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int t
                                 const std::function<void()>& ours, int runs, int warmups) {
   const int previousThreads = cv::getNumThreads();
   cv::setNumThreads(threads);
-  const cv::Ptr<cv::StereoSGBM> sgbm =
-      cv::StereoSGBM::create(0, s.numDisparities, s.blockSize, s.P1, s.P2, s.disp12MaxDiff, s.preFilterCap,
-                             s.uniquenessRatio, s.speckleWindowSize, s.speckleRange, cv::StereoSGBM::MODE_SGBM_3WAY);
+  const cv::Ptr<cv::StereoSGBM> sgbm = createSgbm(s);
   const cv::Mat left = matView(frame.left);
   const cv::Mat right = matView(frame.right);
   cv::Mat disparity;
