@@ -33,7 +33,7 @@ double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& settings, int thre
 
 /// Ours against OpenCV frame by frame: `runs` pairs (after `warmups` of each), one of our frames
 /// (`ours`) then one of cv::StereoSGBM, so that both see the same machine state; the ratio is
-/// taken per pair. On a shared VM whose speed drifts by +-10 % between minutes, separate medians
+/// taken per pair. On a shared VM whose speed drifts by 10-30 % between minutes, separate medians
 /// measured one after the other are not comparable; pairs are.
 struct PairedTiming {
   double oursMs = 0;   ///< median of our frames
