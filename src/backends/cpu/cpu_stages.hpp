@@ -5,8 +5,9 @@
 //
 // SIMD comes from Highway with runtime dispatch (the same binary runs AVX-512, AVX2, SSE4 or
 // NEON code, whichever the CPU has); threads from OpenMP. The matcher (cpu_matcher.cpp) streams
-// the same row kernels (cpu_kernels.hpp) without materialising the cost volumes; these
-// whole-volume stages exist so that every stage can be tested against cpu_ref on its own.
+// the same row kernels (cpu_kernels.hpp) with only one volume (the fused cost) and no C_S, C_L or
+// path-cost volumes; these whole-volume stages exist so that every stage can be tested against
+// cpu_ref on its own.
 
 #include <cstdint>
 
