@@ -60,5 +60,21 @@ DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCali
   return cloud;
 }
 
+void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth,
+                Image<float>& depth) {
+  if (!(focalBaseline > 0.0)) throw std::invalid_argument("depthImage: focal length * baseline must be positive");
+  if (!(maxDepth > 0.0)) throw std::invalid_argument("depthImage: maxDepth must be positive [m]");
+  depth.resize(disparity16.width, disparity16.height);
+  for (int y = 0; y < disparity16.height; ++y) {
+    const std::int16_t* in = disparity16.row(y);
+    for (int x = 0; x < disparity16.width; ++x) {
+      // The arithmetic of reproject(), so that depth(x, y) is the z of the point at (x, y).
+      const int d16 = in[x];
+      const double z = d16 > 0 ? focalBaseline * kDisparityScale / d16 : 0.0;
+      depth(x, y) = z > 0.0 && z <= maxDepth ? static_cast<float>(z) : 0.0f;
+    }
+  }
+}
+
 }  // namespace geometry
 }  // namespace lidar_sgm

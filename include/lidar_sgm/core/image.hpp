@@ -68,6 +68,13 @@ class Image {
   std::vector<T> pixels_;
 };
 
+/// 8-bit color of one pixel (red, green, blue), e.g. the image that colors a dense cloud.
+struct Rgb8 {
+  std::uint8_t r = 0;
+  std::uint8_t g = 0;
+  std::uint8_t b = 0;
+};
+
 /// In-memory disparities are int16 fixed point with 4 fractional bits (x16), as in OpenCV/libSGM.
 constexpr int kDisparityFractionBits = 4;
 constexpr int kDisparityScale = 1 << kDisparityFractionBits;

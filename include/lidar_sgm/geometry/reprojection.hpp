@@ -51,5 +51,12 @@ struct DenseCloud {
 DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCalibration& calibration,
                      const ReprojectionOptions& options = {});
 
+/// The dense depth image of `disparity16` (x16, kInvalidDisparity): z = f*b/d [m] (Eq. 3) per
+/// pixel, the same z as reproject()'s points; 0 where there is no positive disparity or z
+/// exceeds `maxDepth` (KITTI depth completion's "0 = none"). `depth` is resized to match.
+/// Throws std::invalid_argument when focalBaseline or maxDepth is not positive.
+void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth,
+                Image<float>& depth);
+
 }  // namespace geometry
 }  // namespace lidar_sgm

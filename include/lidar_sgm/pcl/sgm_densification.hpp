@@ -9,7 +9,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include "lidar_sgm/pcl/densification_pipeline.hpp"
+#include "lidar_sgm/pipeline/densifier.hpp"
 
 namespace lidar_sgm {
 
@@ -143,7 +143,7 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
  private:
   void fail(PointCloudOut& output, const std::string& message);
 
-  DensificationPipeline pipeline_;
+  Densifier pipeline_;
   std::string className_ = "SGMDensification";
   std::string cameraFrameId_ = "camera_left_rect";
   std::string lastError_;

@@ -1,0 +1,177 @@
+#pragma once
+/// @file densifier.hpp  One frame of LiDAR-SGM, end to end: project the scan, match, crop,
+/// reproject. Every front end (the tools, the evaluation, the benches, SGMDensification) runs
+/// this class, so what the evaluation measures is what the tools ship. No PCL, no OpenCV.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lidar_sgm/core/image.hpp"
+#include "lidar_sgm/core/lidar_points.hpp"
+#include "lidar_sgm/core/matcher.hpp"
+#include "lidar_sgm/core/parameters.hpp"
+#include "lidar_sgm/geometry/calibration.hpp"
+#include "lidar_sgm/geometry/projection.hpp"
+#include "lidar_sgm/geometry/reprojection.hpp"
+
+namespace lidar_sgm {
+
+/// Wall-clock time of the steps of the last run, in milliseconds.
+struct DensificationTimings {
+  double project = 0;    ///< cloud -> sparse LiDAR disparities (with the occlusion filter)
+  double match = 0;      ///< LiDAR-SGM (all stages of the core) and the LiDAR-only crop
+  double reproject = 0;  ///< dense disparity -> depth image and 3D points
+  double total() const { return project + match + reproject; }
+};
+
+/// Holds the calibration, images, parameters and buffers between frames; run() does one frame.
+///
+/// @code
+///   lidar_sgm::Densifier densifier;
+///   densifier.setCalibration(calibration);           // K, baseline, T_cam_lidar, size
+///   densifier.setStereoPair(left.view(), right.view());  // omit -> LiDAR-only SGM
+///   densifier.parameters().alpha = 0.7f;              // LiDAR weight (Eq. 5)
+///   const lidar_sgm::geometry::DenseCloud& cloud = densifier.run(points);  // LiDAR frame
+///   // densifier.disparity(), densifier.depth(), densifier.projected() hold the rest.
+/// @endcode
+///
+/// The mode follows the inputs: a stereo pair and LiDAR -> fused (Eq. 5, weight alpha); LiDAR
+/// only -> LiDAR-only SGM (and, with the crop on, no pixel above the top / below the bottom beam);
+/// a stereo pair only (runProjected(nullptr)) -> stereo-only census SGM. A third camera above the
+/// left one (setUpCamera) adds the vertical census cost (Triple-SGM).
+///
+/// Errors are std::invalid_argument / std::runtime_error with a message naming the problem.
+class Densifier {
+ public:
+  Densifier();
+  ~Densifier();
+  Densifier(Densifier&&) noexcept;
+  Densifier& operator=(Densifier&&) noexcept;
+
+  // ---- inputs ---------------------------------------------------------------------------
+
+  void setCalibration(const geometry::StereoCalibration& calibration) { calibration_ = calibration; }
+  const geometry::StereoCalibration& calibration() const { return calibration_; }
+
+  /// 8-bit gray rectified pair (copied). Empty views clear the pair (LiDAR-only mode).
+  void setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right);
+  /// 16-bit gray rectified pair (copied): census compares intensities, so nothing is lost to 8 bits.
+  void setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right);
+  /// Either depth, as the matcher takes it; both views must have the same depth.
+  void setStereoPair(const GrayImageView& left, const GrayImageView& right);
+  void clearStereoPair();
+  bool hasStereoPair() const { return !left_.empty() || !left16_.empty(); }
+  /// The left image of the pair (8 or 16 bit; empty views without a pair).
+  GrayImageView leftImage() const;
+
+  /// A third rectified camera above the left one (same size and bit depth as the pair),
+  /// `baselineRatio` = b_up / b in (0, 4]: its vertical census cost joins the stereo cost
+  /// (Triple-SGM). Empty clears it.
+  void setUpCamera(const GrayImageView& up, double baselineRatio);
+  bool hasUpCamera() const { return !up_.empty() || !up16_.empty(); }
+
+  /// Color for the output points (copied); empty clears it.
+  void setColorImage(ImageView<const Rgb8> color);
+  bool hasColorImage() const { return !color_.empty(); }
+
+  // ---- options --------------------------------------------------------------------------
+
+  void setParameters(const Parameters& params) { params_ = params; }
+  const Parameters& parameters() const { return params_; }
+  Parameters& parameters() { return params_; }
+  void setBackend(Backend backend) { backend_ = backend; }
+  Backend backend() const { return backend_; }
+  void setProjectionOptions(const geometry::ProjectionOptions& o) { projectionOptions_ = o; }
+  const geometry::ProjectionOptions& projectionOptions() const { return projectionOptions_; }
+  geometry::ProjectionOptions& projectionOptions() { return projectionOptions_; }
+  void setReprojectionOptions(const geometry::ReprojectionOptions& o) { reprojectionOptions_ = o; }
+  const geometry::ReprojectionOptions& reprojectionOptions() const { return reprojectionOptions_; }
+  geometry::ReprojectionOptions& reprojectionOptions() { return reprojectionOptions_; }
+
+  /// LiDAR-only mode: clear the pixels above the scan's top and below its bottom point per
+  /// column (+- lidarCoverageRows rows, +-2 columns), where nothing was measured (default on).
+  void setCropToScan(bool crop) { cropToScan_ = crop; }
+  bool cropToScan() const { return cropToScan_; }
+
+  /// Whether run() also fills depth() and the dense cloud (default true). Off, a run stops at
+  /// the disparity (what the disparity evaluation and the matcher benchmark need).
+  void setComputeCloud(bool compute) { computeCloud_ = compute; }
+  bool computeCloud() const { return computeCloud_; }
+
+  // ---- one frame ------------------------------------------------------------------------
+
+  /// One frame from a cloud: `pointsLidar` in the LiDAR frame [m]. The image size is the
+  /// calibration's, or the images' when the calibration has none (KITTI object files carry no
+  /// size). Throws when the calibration, parameters or image sizes are invalid, the cloud is
+  /// empty, or no point projects into the image. Returns cloud().
+  const geometry::DenseCloud& run(const std::vector<Eigen::Vector3f>& pointsLidar);
+
+  /// One frame from a scan already projected into the left image (e.g. a KITTI depth-completion
+  /// sparse map): `lidar` null or empty -> stereo-only. The size is the images' or the LiDAR's.
+  /// The calibration is optional here: without one (baseline 0) depth() and cloud() stay empty
+  /// (then setComputeCloud(false) is implied); with one, its size must match. Returns cloud().
+  const geometry::DenseCloud& runProjected(const LidarPoints* lidar);
+
+  // ---- outputs of the last run ----------------------------------------------------------
+
+  /// Dense disparity: int16 x16 fixed point (OpenCV's CV_16S convention), kInvalidDisparity
+  /// (-32768) where there is none. io/opencv.hpp converts it to OpenCV's invalid value.
+  const Image<std::int16_t>& disparity() const { return disparity_; }
+  /// Dense depth z [m] in the left camera, from z = f*b/d (Eq. 3), 0 where there is no
+  /// disparity or the depth exceeds the reprojection's maxDepth (KITTI's depth-completion
+  /// convention: 0 = none). Empty when no cloud was computed.
+  const Image<float>& depth() const { return depth_; }
+  /// The dense cloud (LiDAR frame unless the reprojection options say camera).
+  const geometry::DenseCloud& cloud() const { return cloud_; }
+  /// The projected scan: kept points with their pixel, x16 disparity and input index (for
+  /// runProjected: the points of the LidarPoints in pixel order, sourceIndex empty).
+  const geometry::ProjectedLidar& projected() const { return projected_; }
+  /// The calibration the last run used (its size completed from the images).
+  const geometry::StereoCalibration& usedCalibration() const { return used_; }
+  const DensificationTimings& timings() const { return timings_; }
+  MatchMode lastMode() const { return lastMode_; }
+  /// The backend that matched (Auto resolved); Auto before the first run.
+  Backend usedBackend() const;
+  /// Percentage of pixels with a disparity in the last result.
+  double validPercent() const;
+  /// The color of pixel (x, y): from the color image, else from the left image (gray); false
+  /// when there is neither.
+  bool colorAt(int x, int y, Rgb8& out) const;
+
+ private:
+  geometry::StereoCalibration resolveCalibration(bool required, int lidarWidth, int lidarHeight) const;
+  void prepareMatcher();
+  void match(const LidarPoints* lidar);
+  void reprojectResult();
+
+  geometry::StereoCalibration calibration_;
+  geometry::StereoCalibration used_;
+  Parameters params_;
+  Backend backend_ = Backend::Auto;
+  geometry::ProjectionOptions projectionOptions_;
+  geometry::ReprojectionOptions reprojectionOptions_;
+  Image<std::uint8_t> left_;
+  Image<std::uint8_t> right_;
+  Image<std::uint16_t> left16_;
+  Image<std::uint16_t> right16_;
+  Image<std::uint8_t> up_;
+  Image<std::uint16_t> up16_;
+  double upBaselineRatio_ = 0.0;
+  Image<Rgb8> color_;
+  std::unique_ptr<Matcher> matcher_;
+  Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for
+  Image<std::int16_t> disparity_;
+  Image<float> depth_;
+  geometry::DenseCloud cloud_;
+  geometry::ProjectedLidar projected_;
+  DensificationTimings timings_;
+  MatchMode lastMode_ = MatchMode::LidarOnly;
+  bool cropToScan_ = true;
+  bool computeCloud_ = true;
+  bool haveCalibration_ = false;  ///< the last run had a calibration (depth and cloud possible)
+};
+
+}  // namespace lidar_sgm

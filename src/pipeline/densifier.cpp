@@ -1,0 +1,275 @@
+#include "lidar_sgm/pipeline/densifier.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "lidar_sgm/geometry/scan_extent.hpp"
+
+namespace lidar_sgm {
+
+namespace {
+
+template <typename T>
+void copyInto(ImageView<const T> from, Image<T>& to) {
+  to.resize(from.width, from.height);
+  for (int y = 0; y < from.height; ++y) std::copy(from.row(y), from.row(y) + from.width, to.view().row(y));
+}
+
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <typename T>
+void checkPair(ImageView<const T> left, ImageView<const T> right) {
+  if (left.empty() != right.empty()) {
+    throw std::invalid_argument("setStereoPair: give both images or neither");
+  }
+  if (left.width != right.width || left.height != right.height) {
+    throw std::invalid_argument("setStereoPair: the left image is " + sizeText(left.width, left.height) +
+                                " but the right image is " + sizeText(right.width, right.height));
+  }
+}
+
+/// The samples of a per-pixel LiDAR image, in pixel order: what the crop and projected() need.
+std::vector<LidarSample> samplesOf(const LidarPoints& lidar) {
+  std::vector<LidarSample> samples;
+  samples.reserve(lidar.size());
+  for (int y = 0; y < lidar.height(); ++y) {
+    for (int x = 0; x < lidar.width(); ++x) {
+      for (const int* d = lidar.begin(x, y); d != lidar.end(x, y); ++d) samples.push_back({x, y, *d});
+    }
+  }
+  return samples;
+}
+
+}  // namespace
+
+Densifier::Densifier() = default;
+Densifier::~Densifier() = default;
+Densifier::Densifier(Densifier&&) noexcept = default;
+Densifier& Densifier::operator=(Densifier&&) noexcept = default;
+
+void Densifier::setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right) {
+  checkPair(left, right);
+  clearStereoPair();
+  if (left.empty()) return;
+  copyInto(left, left_);
+  copyInto(right, right_);
+}
+
+void Densifier::setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right) {
+  checkPair(left, right);
+  clearStereoPair();
+  if (left.empty()) return;
+  copyInto(left, left16_);
+  copyInto(right, right16_);
+}
+
+void Densifier::setStereoPair(const GrayImageView& left, const GrayImageView& right) {
+  if (!left.gray16.empty() || !right.gray16.empty()) {
+    if (!left.gray8.empty() || !right.gray8.empty()) {
+      throw std::invalid_argument("setStereoPair: the left and right images differ in bit depth (8 vs 16 bit)");
+    }
+    setStereoPair(left.gray16, right.gray16);
+  } else {
+    setStereoPair(left.gray8, right.gray8);
+  }
+}
+
+void Densifier::clearStereoPair() {
+  left_ = Image<std::uint8_t>();
+  right_ = Image<std::uint8_t>();
+  left16_ = Image<std::uint16_t>();
+  right16_ = Image<std::uint16_t>();
+}
+
+GrayImageView Densifier::leftImage() const {
+  if (!left16_.empty()) return GrayImageView(left16_.view());
+  return GrayImageView(left_.view());
+}
+
+void Densifier::setUpCamera(const GrayImageView& up, double baselineRatio) {
+  up_ = Image<std::uint8_t>();
+  up16_ = Image<std::uint16_t>();
+  upBaselineRatio_ = 0.0;
+  if (up.empty()) return;
+  if (!(baselineRatio > 0.0 && baselineRatio <= 4.0)) {
+    throw std::invalid_argument("setUpCamera: the baseline ratio b_up / b must be in (0, 4], got " +
+                                std::to_string(baselineRatio));
+  }
+  if (!up.gray16.empty()) {
+    copyInto(up.gray16, up16_);
+  } else {
+    copyInto(up.gray8, up_);
+  }
+  upBaselineRatio_ = baselineRatio;
+}
+
+void Densifier::setColorImage(ImageView<const Rgb8> color) {
+  if (color.empty()) {
+    color_ = Image<Rgb8>();
+    return;
+  }
+  copyInto(color, color_);
+}
+
+geometry::StereoCalibration Densifier::resolveCalibration(bool required, int lidarWidth, int lidarHeight) const {
+  geometry::StereoCalibration c = calibration_;
+  // The images fix the size when the calibration file had none; otherwise they must agree.
+  const auto adopt = [&c](int width, int height, const char* what) {
+    if (c.width == 0 && c.height == 0) {
+      c.width = width;
+      c.height = height;
+    } else if (c.width != width || c.height != height) {
+      throw std::invalid_argument(std::string("the ") + what + " is " + sizeText(width, height) +
+                                  " but the calibration is for " + sizeText(c.width, c.height));
+    }
+  };
+  if (!left_.empty()) adopt(left_.width(), left_.height(), "stereo pair");
+  if (!left16_.empty()) adopt(left16_.width(), left16_.height(), "stereo pair");
+  if (!up_.empty()) adopt(up_.width(), up_.height(), "third camera's image");
+  if (!up16_.empty()) adopt(up16_.width(), up16_.height(), "third camera's image");
+  if (!color_.empty()) adopt(color_.width(), color_.height(), "color image");
+  if (lidarWidth > 0 || lidarHeight > 0) adopt(lidarWidth, lidarHeight, "projected LiDAR image");
+  if (c.width == 0 && c.height == 0) {
+    throw std::invalid_argument(
+        "the calibration has no image size and there is no image to take it from: set a stereo pair, a color "
+        "image, or a calibration with a size");
+  }
+  if (required || calibration_.baseline != 0.0) {
+    c.validate();
+  } else if (c.width <= 0 || c.height <= 0) {
+    throw std::invalid_argument("the image size " + sizeText(c.width, c.height) + " is not positive");
+  }
+  return c;
+}
+
+void Densifier::prepareMatcher() {
+  validate(params_);
+  // The matcher keeps its buffers between frames; it is rebuilt only for another backend.
+  if (!matcher_ || matcherBackend_ != backend_) {
+    matcher_ = Matcher::create(backend_, params_);
+    matcherBackend_ = backend_;
+  } else {
+    matcher_->setParameters(params_);
+  }
+}
+
+void Densifier::match(const LidarPoints* lidar) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool useLidar = lidar != nullptr && !lidar->empty();
+  if (!useLidar && !hasStereoPair()) {
+    throw std::invalid_argument("nothing to match: give LiDAR points, a stereo pair, or both");
+  }
+  if (hasUpCamera() && !hasStereoPair()) {
+    throw std::invalid_argument("the third camera needs the stereo pair it extends");
+  }
+  if (!up16_.empty() != !left16_.empty()) {
+    throw std::invalid_argument("the third camera's image and the stereo pair differ in bit depth");
+  }
+  disparity_.resize(used_.width, used_.height);
+  VerticalView up;
+  if (!up_.empty()) up.up = up_.view();
+  if (!up16_.empty()) up.up = up16_.view();
+  up.baselineRatio = upBaselineRatio_;
+  GrayImageView left;
+  GrayImageView right;
+  if (!left_.empty()) {
+    left = left_.view();
+    right = right_.view();
+  } else if (!left16_.empty()) {
+    left = left16_.view();
+    right = right16_.view();
+  }
+  matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
+  lastMode_ = matcher_->lastMode();
+  if (cropToScan_ && lastMode_ == MatchMode::LidarOnly) {
+    // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
+    geometry::cropToScanRows(disparity_.view(), projected_.samples, params_.lidarCoverageRows, 2);
+  }
+  timings_.match = millisecondsSince(start);
+}
+
+void Densifier::reprojectResult() {
+  const auto start = std::chrono::steady_clock::now();
+  cloud_ = geometry::DenseCloud();
+  depth_ = Image<float>();
+  if (computeCloud_ && haveCalibration_) {
+    geometry::depthImage(disparity_.view(), used_.focalBaseline(), reprojectionOptions_.maxDepth, depth_);
+    cloud_ = geometry::reproject(disparity_.view(), used_, reprojectionOptions_);
+  }
+  timings_.reproject = millisecondsSince(start);
+}
+
+const geometry::DenseCloud& Densifier::run(const std::vector<Eigen::Vector3f>& pointsLidar) {
+  used_ = resolveCalibration(true, 0, 0);
+  haveCalibration_ = true;
+  prepareMatcher();
+  if (pointsLidar.empty()) throw std::invalid_argument("the input cloud is empty");
+
+  const auto start = std::chrono::steady_clock::now();
+  projected_ = geometry::project(pointsLidar, used_, projectionOptions_);
+  timings_.project = millisecondsSince(start);
+  if (projected_.samples.empty()) {
+    throw std::invalid_argument("no point of the cloud projects into the image (" + projected_.stats.describe() +
+                                "): check the calibration");
+  }
+  const LidarPoints lidar = projected_.lidarPoints();
+  match(&lidar);
+  reprojectResult();
+  return cloud_;
+}
+
+const geometry::DenseCloud& Densifier::runProjected(const LidarPoints* lidar) {
+  const bool useLidar = lidar != nullptr && !lidar->empty();
+  used_ = resolveCalibration(false, useLidar ? lidar->width() : 0, useLidar ? lidar->height() : 0);
+  haveCalibration_ = calibration_.baseline != 0.0;
+  prepareMatcher();
+  const auto start = std::chrono::steady_clock::now();
+  projected_ = geometry::ProjectedLidar();
+  projected_.width = used_.width;
+  projected_.height = used_.height;
+  if (useLidar) {
+    projected_.samples = samplesOf(*lidar);
+    projected_.stats.input = projected_.samples.size();
+    projected_.stats.kept = projected_.samples.size();
+  }
+  timings_.project = millisecondsSince(start);
+  match(useLidar ? lidar : nullptr);
+  reprojectResult();
+  return cloud_;
+}
+
+Backend Densifier::usedBackend() const { return matcher_ ? matcher_->backend() : Backend::Auto; }
+
+double Densifier::validPercent() const {
+  if (disparity_.empty()) return 0.0;
+  std::size_t valid = 0;
+  for (int y = 0; y < disparity_.height(); ++y) {
+    for (int x = 0; x < disparity_.width(); ++x) valid += disparity_(x, y) != kInvalidDisparity ? 1 : 0;
+  }
+  return 100.0 * static_cast<double>(valid) / (static_cast<double>(disparity_.width()) * disparity_.height());
+}
+
+bool Densifier::colorAt(int x, int y, Rgb8& out) const {
+  if (!color_.empty()) {
+    out = color_(x, y);
+    return true;
+  }
+  if (!left_.empty()) {
+    const std::uint8_t g = left_(x, y);
+    out = Rgb8{g, g, g};
+    return true;
+  }
+  if (!left16_.empty()) {
+    const auto g = static_cast<std::uint8_t>(left16_(x, y) >> 8);
+    out = Rgb8{g, g, g};
+    return true;
+  }
+  return false;
+}
+
+}  // namespace lidar_sgm
