@@ -167,7 +167,7 @@ void Densifier::match(const LidarPoints* lidar) {
   if (hasUpCamera() && !hasStereoPair()) {
     throw std::invalid_argument("the third camera needs the stereo pair it extends");
   }
-  if (!up16_.empty() != !left16_.empty()) {
+  if (hasUpCamera() && up16_.empty() != left16_.empty()) {
     throw std::invalid_argument("the third camera's image and the stereo pair differ in bit depth");
   }
   disparity_.resize(used_.width, used_.height);
