@@ -55,6 +55,8 @@ void printHelp(const char* program) {
       "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
       "                           cleared, nothing was measured there)\n"
       "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
+      "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
+      "                           0 = none or beyond -max_depth)\n"
       "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -h                       this help\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
@@ -134,10 +136,11 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   sgm.setMaxDepth(out.maxDepth);
   sgm.setStride(out.stride);
   const std::string frame = args.text("frame", "lidar");
-  // Matching sees the images' full depth (8 or 16 bit gray); the output's color is 8-bit.
+  // Matching sees the images' full depth (8 or 16 bit gray); the output's color is 8-bit. Both
+  // come from the image decoded once.
   if (!right.empty()) {
-    const cv::Mat leftGray = lidar_sgm::io::readGrayImage(args.text("left", ""));
-    const cv::Mat rightGray = lidar_sgm::io::readGrayImage(args.text("right", ""));
+    const cv::Mat leftGray = lidar_sgm::io::toGray(left);
+    const cv::Mat rightGray = lidar_sgm::io::toGray(right);
     if (leftGray.depth() != rightGray.depth()) {
       throw std::invalid_argument("the left and right images differ in bit depth (8 vs 16 bit)");
     }
@@ -151,7 +154,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
       sgm.setStereoPair(l, r);
     }
   }
-  if (!left.empty()) sgm.setColorImage(lidar_sgm::io::toPclImage(left));
+  if (!left.empty()) sgm.setColorImage(lidar_sgm::io::toPclImage(lidar_sgm::io::toColor(left)));
 
   pcl::PointCloud<PointOutT> dense;
   sgm.filter(dense);
@@ -175,6 +178,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const std::string outPath = args.positionals()[1];
   const std::string disparityPath = args.text("disparity", "");
   const std::string colorPath = args.text("color", "");
+  const std::string depthPath = args.text("depth", "");
   Timer saveTimer;
   std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
@@ -182,6 +186,10 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   if (!disparityPath.empty()) {
     std::printf(", %s", disparityPath.c_str());
     lidar_sgm::io::writeImageAtomically(disparityPath, lidar_sgm::io::toKittiDisparity(used.view()));
+  }
+  if (!depthPath.empty()) {
+    std::printf(", %s", depthPath.c_str());
+    lidar_sgm::io::writeImageAtomically(depthPath, lidar_sgm::io::toKittiDepth(sgm.getDepthImage().view()));
   }
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
@@ -197,7 +205,7 @@ int run(int argc, char** argv) {
   const Arguments args(argc, argv,
                        joined(lidar_sgm::apps::sgmValueOptions(),
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
-                               "disparity", "color"}),
+                               "disparity", "depth", "color"}),
                        joined(lidar_sgm::apps::sgmFlagOptions(),
                               {"h", "help", "keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (args.has("h") || args.has("help")) {
@@ -220,7 +228,7 @@ int run(int argc, char** argv) {
   const std::vector<std::string> inputs{inputPath, calibPath, leftPath, rightPath};
   lidar_sgm::apps::requireOutput(outPath, {".pcd", ".ply"}, inputs);
   std::vector<std::string> outputs{outPath};
-  for (const char* option : {"disparity", "color"}) {
+  for (const char* option : {"disparity", "depth", "color"}) {
     const std::string path = args.text(option, "");
     if (path.empty()) continue;
     lidar_sgm::apps::requireOutput(path, {".png"}, inputs);
@@ -267,10 +275,10 @@ int run(int argc, char** argv) {
   if (!leftPath.empty()) {
     Timer imageTimer;
     std::printf("Loading %s", leftPath.c_str());
-    left = lidar_sgm::io::readColorImage(leftPath);
+    left = lidar_sgm::io::readImage(leftPath);
     if (!rightPath.empty()) {
       std::printf(", %s", rightPath.c_str());
-      right = lidar_sgm::io::readColorImage(rightPath);
+      right = lidar_sgm::io::readImage(rightPath);
       if (right.size() != left.size()) {
         throw std::invalid_argument("the left image is " + std::to_string(left.cols) + "x" + std::to_string(left.rows) +
                                     " but the right image is " + std::to_string(right.cols) + "x" +

@@ -10,8 +10,8 @@
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
-#include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/pipeline/densifier.hpp"
 
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
@@ -36,6 +36,8 @@ void printHelp(const char* program) {
       "  -lidar_depth DEPTH.png   sparse LiDAR depth, KITTI depth format (uint16, metres*256, 0 = none)\n"
       "  -fb F                    focal length [px] * baseline [m] for -lidar_depth (d = F/z)\n"
       "%s"
+      "  -no_crop_to_scan         LiDAR-only: keep pixels above the scan's top / below its bottom beam (default:\n"
+      "                           cleared, nothing was measured there; as lidar_sgm_densify)\n"
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -h                       this help\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str());
@@ -47,7 +49,7 @@ void requirePngOutput(const std::string& path, const std::vector<std::string>& i
 
 int run(int argc, char** argv) {
   const Arguments args(argc, argv, joined(sgmValueOptions(), {"lidar", "lidar_depth", "fb", "color"}),
-                       joined(sgmFlagOptions(), {"h", "help"}));
+                       joined(sgmFlagOptions(), {"h", "help", "no_crop_to_scan"}));
   if (args.has("h") || args.has("help")) {
     printHelp(argv[0]);
     return 0;
@@ -111,21 +113,27 @@ int run(int argc, char** argv) {
                                 "' holds no valid point");
   }
 
-  auto matcher = lidar_sgm::Matcher::create(backend, params);
-  lidar_sgm::Image<std::int16_t> disparity(left.cols, left.rows);
+  // The pipeline every tool runs; this tool stops at the disparity (no calibration, no cloud).
+  lidar_sgm::Densifier densifier;
+  densifier.setParameters(params);
+  densifier.setBackend(backend);
+  densifier.setComputeCloud(false);
+  densifier.setCropToScan(!args.has("no_crop_to_scan"));
+  if (stereo) densifier.setStereoPair(lidar_sgm::io::grayView(left), lidar_sgm::io::grayView(right));
   Timer sgmTimer;
-  matcher->compute(lidar_sgm::io::grayView(left),
-                   stereo ? lidar_sgm::io::grayView(right) : lidar_sgm::GrayImageView(),
-                   lidar.empty() ? nullptr : &lidar, disparity.view());
-  long valid = 0;
-  for (int y = 0; y < disparity.height(); ++y) {
-    for (int x = 0; x < disparity.width(); ++x) valid += disparity(x, y) != lidar_sgm::kInvalidDisparity;
+  const bool lidarOnly = !stereo;
+  if (lidarOnly && (left.cols != lidar.width() || left.rows != lidar.height())) {
+    throw std::invalid_argument("the LiDAR image is " + std::to_string(lidar.width()) + "x" +
+                                std::to_string(lidar.height()) + " but LEFT is " + std::to_string(left.cols) + "x" +
+                                std::to_string(left.rows));
   }
+  densifier.runProjected(lidar.empty() ? nullptr : &lidar);
+  const lidar_sgm::Image<std::int16_t>& disparity = densifier.disparity();
   std::printf("Matching (%s, %s, alpha %g%s) [done, %.0f ms : %.1f %% of pixels have a disparity]\n",
-              lidar_sgm::toString(matcher->lastMode()).c_str(), lidar_sgm::toString(matcher->backend()).c_str(),
-              matcher->lastMode() == lidar_sgm::MatchMode::Fused ? params.alpha
-              : matcher->lastMode() == lidar_sgm::MatchMode::LidarOnly ? 1.0 : 0.0,
-              params.scale == 1.0f ? "" : ", matched at scale 0.5", sgmTimer.elapsedMs(), 100.0 * static_cast<double>(valid) / (static_cast<double>(disparity.width()) * disparity.height()));
+              lidar_sgm::toString(densifier.lastMode()).c_str(), lidar_sgm::toString(densifier.usedBackend()).c_str(),
+              densifier.lastMode() == lidar_sgm::MatchMode::Fused ? params.alpha
+              : densifier.lastMode() == lidar_sgm::MatchMode::LidarOnly ? 1.0 : 0.0,
+              params.scale == 1.0f ? "" : ", matched at scale 0.5", sgmTimer.elapsedMs(), densifier.validPercent());
 
   Timer saveTimer;
   std::printf("Saving %s", outPath.c_str());

@@ -31,25 +31,20 @@ double median(std::vector<double> values) {
   return 0.5 * (lower + upper);
 }
 
-Measurement measureMatcher(Matcher& matcher, const Frame& frame, MatchMode mode, int runs, int warmups) {
-  const GrayImageView left(frame.left.view());
-  const GrayImageView right = mode == MatchMode::LidarOnly ? GrayImageView() : GrayImageView(frame.right.view());
-  const LidarPoints* lidar = mode == MatchMode::StereoOnly ? nullptr : &frame.lidar;
-  Image<std::int16_t> disparity(frame.width(), frame.height());
-
+Measurement measureFrames(FrameRunner& runner, MatchMode mode, int runs, int warmups) {
   std::vector<double> frameMs, rescaleMs;
   std::vector<std::vector<double>> stageMs(stageColumns().size());
   for (int i = 0; i < warmups + runs; ++i) {
-    const double ms = wallClockMs([&] { matcher.compute(left, right, lidar, disparity.view()); });
-    if (matcher.lastMode() != mode) {
-      throw std::logic_error("the matcher ran " + toString(matcher.lastMode()) + " where the bench asked for " +
+    const double ms = wallClockMs([&] { runner.run(); });
+    if (runner.lastMode() != mode) {
+      throw std::logic_error("the matcher ran " + toString(runner.lastMode()) + " where the bench asked for " +
                              toString(mode));
     }
     if (i < warmups) continue;
     frameMs.push_back(ms);
-    rescaleMs.push_back(matcher.lastRescaleMs());
+    rescaleMs.push_back(runner.rescaleMs());
     for (std::size_t s = 0; s < stageColumns().size(); ++s) {
-      stageMs[s].push_back(matcher.lastTimings().*stageColumns()[s].member);
+      stageMs[s].push_back(runner.stages().*stageColumns()[s].member);
     }
   }
   Measurement m;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bench_frame.hpp"
+#include "bench_runner.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
 namespace lidar_sgm {
@@ -13,7 +14,7 @@ namespace bench {
 /// Medians over the timed runs of one configuration (each figure its own median, so the stages
 /// need not add up to the frame exactly).
 struct Measurement {
-  double frameMs = 0;   ///< wall clock around compute(): what a caller waits for
+  double frameMs = 0;   ///< wall clock around one frame (FrameRunner::run): what a caller waits for
   StageTimings stages;  ///< Matcher::lastTimings()
   double rescaleMs = 0; ///< Matcher::lastRescaleMs(): half scale only, outside the stages
 };
@@ -46,11 +47,10 @@ double medianMs(Fn&& fn, int runs, int warmups) {
   return median(ms);
 }
 
-/// Matches `frame` in `mode` (the inputs of that mode: stereo-only gets no LiDAR, LiDAR-only no
-/// right image) `warmups` + `runs` times and returns the medians of the timed runs. After every
-/// frame it checks that the matcher really ran in `mode` (Matcher::lastMode()) and throws
+/// Runs `runner`'s frame `warmups` + `runs` times and returns the medians of the timed runs.
+/// After every frame it checks that the matcher really ran in `mode` (lastMode()) and throws
 /// std::logic_error if not, so a row of the table cannot claim a mode it did not time.
-Measurement measureMatcher(Matcher& matcher, const Frame& frame, MatchMode mode, int runs, int warmups);
+Measurement measureFrames(FrameRunner& runner, MatchMode mode, int runs, int warmups);
 
 }  // namespace bench
 }  // namespace lidar_sgm

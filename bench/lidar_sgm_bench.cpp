@@ -200,17 +200,6 @@ std::vector<Config> selectConfigs(const std::vector<Config>& all, const std::vec
   return selected;
 }
 
-/// A matcher of the backend the settings block names: Matcher::create resolves "auto" the same
-/// way, but the check keeps the table honest if that ever changes.
-std::unique_ptr<Matcher> createMatcher(Backend requested, const Parameters& params) {
-  std::unique_ptr<Matcher> matcher = Matcher::create(requested, params);
-  if (matcher->backend() != resolve(requested)) {
-    throw std::logic_error("asked for backend " + toString(resolve(requested)) + ", got " +
-                           toString(matcher->backend()));
-  }
-  return matcher;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Output
 
@@ -228,6 +217,7 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
   std::printf("  isa:          %s (chosen at run time by the cpu backend%s)\n", simdTarget().c_str(),
               backend == Backend::Cpu ? "" : ", which this run does not use");
   std::printf("  backend:      %s -> %s\n", o.backend.c_str(), toString(backend).c_str());
+  std::printf("  timed:        %s\n", FrameRunner::timedApi());
   std::printf("  threads:      %d (-threads %d%s)%s\n", effectiveThreads(base), o.threads,
               o.threads == 0 ? " = the hardware's" : "",
               backend == Backend::CpuRef ? ", but cpu_ref runs on one" : "");
@@ -260,7 +250,7 @@ void printTable(const std::vector<Row>& rows) {
     for (const StageColumn& c : stageColumns()) std::printf(" %s |", ms(r.m.stages.*c.member).c_str());
     std::printf(" %s |\n", r.halfScale ? ms(r.m.rescaleMs).c_str() : "-");
   }
-  std::printf("\nStage columns: Matcher::lastTimings() in ms, medians; frame ms: wall clock around compute(). "
+  std::printf("\nStage columns: Matcher::lastTimings() in ms, medians; frame ms: wall clock around one frame (see timed). "
               "rescale: Matcher::lastRescaleMs(), the 2x2 downscale of the inputs and the upscale of the "
               "disparity at half scale (in frame ms, not in the stages).\n");
 }
@@ -291,14 +281,9 @@ void compareWithOpenCv(const Options& o, const Frame& frame, Backend backend, co
   }
   std::printf("  paired, %d frames each, ours then OpenCV in turn (median ratio [min, max]):\n", o.runs);
   for (const MatchMode mode : {MatchMode::StereoOnly, MatchMode::Fused}) {
-    const std::unique_ptr<Matcher> matcher = createMatcher(backend, base);
-    const GrayImageView left(frame.left.view());
-    const GrayImageView right(frame.right.view());
-    const LidarPoints* lidar = mode == MatchMode::Fused ? &frame.lidar : nullptr;
-    Image<std::int16_t> disparity(frame.width(), frame.height());
-    const PairedTiming t = pairWithOpenCvSgbm(
-        frame, settings, threads, [&] { matcher->compute(left, right, lidar, disparity.view()); }, o.runs, kWarmups);
-    if (matcher->lastMode() != mode) throw std::logic_error("the paired run matched in the wrong mode");
+    FrameRunner runner(backend, base, frame, mode);
+    const PairedTiming t = pairWithOpenCvSgbm(frame, settings, threads, [&] { runner.run(); }, o.runs, kWarmups);
+    if (runner.lastMode() != mode) throw std::logic_error("the paired run matched in the wrong mode");
     std::printf("  ours / OpenCV, %-11s: %.2f [%.2f, %.2f] (ours %s ms, OpenCV %s ms)\n", toString(mode).c_str(),
                 t.ratio, t.ratioMin, t.ratioMax, ms(t.oursMs).c_str(), ms(t.sgbmMs).c_str());
   }
@@ -330,8 +315,8 @@ void printGrowth(const Options& o, const Frame& frame, Backend backend, const Pa
     for (const int disparities : {64, 128}) {
       Parameters params = base;
       params.numDisparities = disparities;
-      std::unique_ptr<Matcher> matcher = createMatcher(backend, params);
-      const Measurement m = measureMatcher(*matcher, sized, MatchMode::Fused, o.runs, kWarmups);
+      FrameRunner runner(backend, params, sized, MatchMode::Fused);
+      const Measurement m = measureFrames(runner, MatchMode::Fused, o.runs, kWarmups);
       const double cells = static_cast<double>(width) * height * disparities;
       std::printf("| %s | %d | %s | %.3f |\n", sizeText(width, height).c_str(), disparities, ms(m.frameMs).c_str(),
                   m.frameMs * 1e6 / cells);
@@ -361,8 +346,8 @@ int run(const Options& o) {
 
   std::vector<Row> rows;
   for (const Config& c : configs) {
-    std::unique_ptr<Matcher> matcher = createMatcher(backend, c.params);
-    const Measurement m = measureMatcher(*matcher, frame, c.mode, o.runs, kWarmups);
+    FrameRunner runner(backend, c.params, frame, c.mode);
+    const Measurement m = measureFrames(runner, c.mode, o.runs, kWarmups);
     std::printf("  %-40s %s ms\n", c.label.c_str(), ms(m.frameMs).c_str());
     if (c.key == "fused") {
       // Printed before any other configuration runs, so it is the fused full-size frame's.

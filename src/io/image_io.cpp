@@ -35,24 +35,36 @@ cv::Mat readSixteenBitGray(const std::string& path, const char* what) {
 
 }  // namespace
 
-cv::Mat readGrayImage(const std::string& path) {
+cv::Mat readImage(const std::string& path) {
   cv::Mat image = readAny(path);
   if (image.depth() != CV_8U && image.depth() != CV_16U) {
     throw std::runtime_error("cannot use image '" + path + "': only 8- and 16-bit images are supported");
   }
+  if (image.channels() != 1 && image.channels() != 3 && image.channels() != 4) {
+    throw std::runtime_error("cannot use image '" + path + "': expected 1, 3 or 4 channels, it has " +
+                             std::to_string(image.channels()));
+  }
+  return image;
+}
+
+cv::Mat toGray(const cv::Mat& image) {
   if (image.channels() == 1) return image;
   cv::Mat gray;
   cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
   return gray;
 }
 
-cv::Mat readColorImage(const std::string& path) {
-  cv::Mat image = readAny(path);
-  if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 257.0);
-  if (image.channels() == 1) cv::cvtColor(image, image, cv::COLOR_GRAY2BGR);
-  if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2BGR);
-  return image;
+cv::Mat toColor(const cv::Mat& image) {
+  cv::Mat color = image;
+  if (color.depth() == CV_16U) color.convertTo(color, CV_8U, 1.0 / 257.0);
+  if (color.channels() == 1) cv::cvtColor(color, color, cv::COLOR_GRAY2BGR);
+  if (color.channels() == 4) cv::cvtColor(color, color, cv::COLOR_BGRA2BGR);
+  return color;
 }
+
+cv::Mat readGrayImage(const std::string& path) { return toGray(readImage(path)); }
+
+cv::Mat readColorImage(const std::string& path) { return toColor(readImage(path)); }
 
 GrayImageView grayView(const cv::Mat& gray) {
   if (gray.type() == CV_8UC1) {
@@ -114,6 +126,18 @@ cv::Mat toKittiDisparity(ImageView<const std::int16_t> disparity16) {
       const int d = disparity16(x, y);
       png.at<std::uint16_t>(y, x) =
           static_cast<std::uint16_t>(d == kInvalidDisparity || d <= 0 ? 0 : d * (256 / kDisparityScale));
+    }
+  }
+  return png;
+}
+
+cv::Mat toKittiDepth(ImageView<const float> depth) {
+  cv::Mat png(depth.height, depth.width, CV_16UC1);
+  for (int y = 0; y < depth.height; ++y) {
+    for (int x = 0; x < depth.width; ++x) {
+      const double scaled = std::round(static_cast<double>(depth(x, y)) * 256.0);
+      const bool representable = scaled >= 1.0 && scaled <= 65535.0;  // false for NaN too
+      png.at<std::uint16_t>(y, x) = representable ? static_cast<std::uint16_t>(scaled) : 0;
     }
   }
   return png;

@@ -52,20 +52,13 @@ Densifier::~Densifier() = default;
 Densifier::Densifier(Densifier&&) noexcept = default;
 Densifier& Densifier::operator=(Densifier&&) noexcept = default;
 
-void Densifier::setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right) {
+template <typename T>
+void Densifier::copyPair(ImageView<const T> left, ImageView<const T> right, Image<T>& leftOut, Image<T>& rightOut) {
   checkPair(left, right);
   clearStereoPair();
   if (left.empty()) return;
-  copyInto(left, left_);
-  copyInto(right, right_);
-}
-
-void Densifier::setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right) {
-  checkPair(left, right);
-  clearStereoPair();
-  if (left.empty()) return;
-  copyInto(left, left16_);
-  copyInto(right, right16_);
+  copyInto(left, leftOut);
+  copyInto(right, rightOut);
 }
 
 void Densifier::setStereoPair(const GrayImageView& left, const GrayImageView& right) {
@@ -73,9 +66,9 @@ void Densifier::setStereoPair(const GrayImageView& left, const GrayImageView& ri
     if (!left.gray8.empty() || !right.gray8.empty()) {
       throw std::invalid_argument("setStereoPair: the left and right images differ in bit depth (8 vs 16 bit)");
     }
-    setStereoPair(left.gray16, right.gray16);
+    copyPair(left.gray16, right.gray16, left16_, right16_);
   } else {
-    setStereoPair(left.gray8, right.gray8);
+    copyPair(left.gray8, right.gray8, left_, right_);
   }
 }
 

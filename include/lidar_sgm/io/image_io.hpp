@@ -12,6 +12,15 @@
 namespace lidar_sgm {
 namespace io {
 
+/// Reads an image as stored (8 or 16 bit; 1, 3 or 4 channels, BGR order), decoded once; toGray()
+/// and toColor() then give what matching and coloring need. Throws std::runtime_error naming
+/// the file when it is missing, not an image, or of another depth / channel count.
+cv::Mat readImage(const std::string& path);
+/// Gray, keeping 8 or 16 bits (BGR(A) converted with OpenCV's BT.601 weights; gray shared, not copied).
+cv::Mat toGray(const cv::Mat& image);
+/// 8-bit BGR (16 bit scaled by 1/257, gray expanded, alpha dropped).
+cv::Mat toColor(const cv::Mat& image);
+
 /// Reads an image as gray, keeping 8 or 16 bits (color is converted, BGR order).
 /// Throws std::runtime_error naming the file when it is missing or not an image.
 cv::Mat readGrayImage(const std::string& path);
@@ -36,6 +45,11 @@ Image<std::int16_t> readKittiDepthAsDisparity(const std::string& path, double fo
 /// x16 disparities -> KITTI disparity PNG (uint16, disparity*256). Invalid and non-positive
 /// disparities are written as 0, which the format reserves for "no value".
 cv::Mat toKittiDisparity(ImageView<const std::int16_t> disparity16);
+
+/// Depth [m] (0 = none, as Densifier::depth()) -> KITTI depth-completion PNG (uint16,
+/// round(metres*256), 0 = none). A depth the format cannot hold (>= 256 m, or one that rounds
+/// to 0) is written as 0: "no value" is safer than a clamped, wrong one.
+cv::Mat toKittiDepth(ImageView<const float> depth);
 
 /// Color picture of x16 disparities (turbo color map, 0 .. maxDisparity), invalid pixels black.
 cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxDisparity);

@@ -124,6 +124,9 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
 
   /// The dense disparity of the last frame: x16 fixed point, kInvalidDisparity where none.
   const Image<std::int16_t>& getDisparityImage() const { return pipeline_.disparity(); }
+  /// The dense depth of the last frame: z [m] in the left camera, 0 where none or beyond the
+  /// max depth (KITTI depth completion's convention).
+  const Image<float>& getDepthImage() const { return pipeline_.depth(); }
   /// The projected scan of the last frame (sparse disparities, per-reason counts).
   const geometry::ProjectedLidar& getProjectedLidar() const { return pipeline_.projected(); }
   const DensificationTimings& getTimings() const { return pipeline_.timings(); }

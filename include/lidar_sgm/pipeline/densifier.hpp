@@ -56,11 +56,9 @@ class Densifier {
   void setCalibration(const geometry::StereoCalibration& calibration) { calibration_ = calibration; }
   const geometry::StereoCalibration& calibration() const { return calibration_; }
 
-  /// 8-bit gray rectified pair (copied). Empty views clear the pair (LiDAR-only mode).
-  void setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right);
-  /// 16-bit gray rectified pair (copied): census compares intensities, so nothing is lost to 8 bits.
-  void setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right);
-  /// Either depth, as the matcher takes it; both views must have the same depth.
+  /// The rectified gray pair (copied), 8 or 16 bit (both the same; any ImageView of uint8 /
+  /// uint16 converts): census compares intensities, so 16-bit images lose nothing to 8 bits.
+  /// Empty views clear the pair (LiDAR-only mode).
   void setStereoPair(const GrayImageView& left, const GrayImageView& right);
   void clearStereoPair();
   bool hasStereoPair() const { return !left_.empty() || !left16_.empty(); }
@@ -135,6 +133,9 @@ class Densifier {
   MatchMode lastMode() const { return lastMode_; }
   /// The backend that matched (Auto resolved); Auto before the first run.
   Backend usedBackend() const;
+  /// The matcher of the last run: its stage timings (lastTimings(), lastRescaleMs()) and LiDAR
+  /// support; null before the first run.
+  const Matcher* matcher() const { return matcher_.get(); }
   /// Percentage of pixels with a disparity in the last result.
   double validPercent() const;
   /// The color of pixel (x, y): from the color image, else from the left image (gray); false
@@ -146,6 +147,8 @@ class Densifier {
   void prepareMatcher();
   void match(const LidarPoints* lidar);
   void reprojectResult();
+  template <typename T>
+  void copyPair(ImageView<const T> left, ImageView<const T> right, Image<T>& leftOut, Image<T>& rightOut);
 
   geometry::StereoCalibration calibration_;
   geometry::StereoCalibration used_;
