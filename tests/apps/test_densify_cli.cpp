@@ -137,7 +137,7 @@ TEST_F(DensifyCli, HelpListsTheOptions) {
   const RunResult r = runTool("-h");
   EXPECT_EQ(r.exitCode, 0);
   for (const char* option : {"-calib", "-left", "-right", "-image_size", "-keep_organized", "-frame", "-max_depth",
-                             "-stride", "-no_occlusion_filter", "-disparity", "-color", "-alpha", "(default: 80)",
+                             "-stride", "-no_occlusion_filter", "-disparity", "-depth", "-color", "-alpha", "(default: 80)",
                              "-format binary|compressed|ascii", "(default: binary)", "-scale 1|0.5", "-threads N",
                              "0 = all hardware threads", "-backend", "cpu_ref, cpu"}) {
     EXPECT_NE(r.output.find(option), std::string::npos) << option;
@@ -234,6 +234,36 @@ TEST_F(DensifyCli, KeepOrganizedInCameraFrameHasOnePointPerPixel) {
   }
   EXPECT_GT(valid, 5 * keptPoints(r.output));
   EXPECT_EQ(notInFront, 0u) << "camera frame: z forward";
+}
+
+TEST_F(DensifyCli, DepthPngHoldsEachPointsCameraDepthInKittiFormat) {
+  const RunResult r = runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft + " -right " + kRight +
+                              " -keep_organized -frame camera -depth " + p("depth.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const cv::Mat depth = cv::imread(p("depth.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(depth.type(), CV_16UC1);
+  ASSERT_EQ(depth.cols, kWidth);
+  ASSERT_EQ(depth.rows, kHeight);
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZRGB>(p("out.pcd"), cloud), 0);
+  ASSERT_EQ(cloud.width, static_cast<std::uint32_t>(kWidth));
+  // KITTI depth completion: metres * 256, 0 = none; a pixel has a depth exactly when it has a point.
+  std::size_t points = 0;
+  std::size_t mismatched = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const pcl::PointXYZRGB& q = cloud.at(x, y);
+      const std::uint16_t v = depth.at<std::uint16_t>(y, x);
+      if (!std::isfinite(q.z)) {
+        mismatched += v != 0 ? 1 : 0;
+        continue;
+      }
+      ++points;
+      mismatched += std::abs(v / 256.0 - q.z) <= 0.5 / 256.0 + 1e-6 * q.z ? 0 : 1;
+    }
+  }
+  EXPECT_GT(points, static_cast<std::size_t>(kWidth * kHeight / 2));
+  EXPECT_EQ(mismatched, 0u);
 }
 
 TEST_F(DensifyCli, KeepOrganizedWithStrideTwoHalvesTheSizeRoundingUp) {
@@ -406,6 +436,9 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(kScan + out + calib + pair + " -disparity " + p("d.png") + " -color " + p("d.png"),
                 "is also another output");
   expectFailure(kScan + out + calib + pair + " -disparity " + p("d.txt"), "must be a .png file");
+  expectFailure(kScan + out + calib + pair + " -disparity " + p("d.png") + " -depth " + p("d.png"),
+                "is also another output");
+  expectFailure(kScan + out + calib + pair + " -depth " + p("d.jpg"), "must be a .png file");
 
   // Parameters.
   expectFailure(kScan + out + calib + pair + " -alpha 1.5", "alpha = 1.5");
