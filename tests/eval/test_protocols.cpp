@@ -12,8 +12,8 @@
 
 #include "common/test_data.hpp"
 #include "eval/lidar_rings.hpp"
-#include "eval/methods.hpp"
-#include "eval/protocols.hpp"
+#include "lidar_sgm/eval/methods.hpp"
+#include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/eval/simulated_lidar.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
@@ -21,7 +21,7 @@
 #include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 std::size_t pixels(const EvalFrame& f) { return static_cast<std::size_t>(f.left.cols) * static_cast<std::size_t>(f.left.rows); }
@@ -404,5 +404,5 @@ TEST(ProtocolP3Names, DatasetNames) {
 }
 
 }  // namespace
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm
