@@ -1,4 +1,4 @@
-// Ring recovery of KITTI velodyne scans (apps/eval/lidar_rings.hpp), for P2's ring hold-out.
+// Ring recovery of KITTI velodyne scans (src/eval/lidar_rings.hpp), for P2's ring hold-out.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The frames of protocols P1, P2, P3 (apps/eval/protocols.hpp): every EvalFrame field filled and
+// The frames of protocols P1, P2, P3 (lidar_sgm/eval/protocols.hpp): every EvalFrame field filled and
 // consistent, on the shared third-party data (skipped when absent) and on synthetic frames.
 #include <gtest/gtest.h>
 
