@@ -1,5 +1,5 @@
 // lidar_sgm_eval on a small subset, as a user runs it: the files it writes, and its figures
-// against the same frame matched and scored directly.
+// against the same frame run through the Densifier (as the tools run it) and scored directly.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -13,11 +13,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eval/methods.hpp"
-#include "eval/protocols.hpp"
-#include "lidar_sgm/core/matcher.hpp"
+#include "lidar_sgm/eval/methods.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
+#include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/pipeline/densifier.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -28,8 +28,9 @@ struct RunResult {
   std::string output;
 };
 
-RunResult runTool(const std::string& arguments) {
-  const std::string command = std::string(LIDAR_SGM_EVAL_TOOL) + " " + arguments + " 2>&1";
+/// `environment` goes before the command ("NAME=value ..."), as a shell reads it.
+RunResult runTool(const std::string& arguments, const std::string& environment = "") {
+  const std::string command = environment + " " + std::string(LIDAR_SGM_EVAL_TOOL) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 512> buffer{};
@@ -49,7 +50,7 @@ class EvalCli : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheMatchersOwn) {
+TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheDensifiers) {
   const RunResult r = runTool("-protocols P3 -p3_sets clear64,rain64 -synth_frames 2 -synth_size 310x94 -alpha_step 0.5 "
                               "-threads 2 -out " + dir_.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -66,26 +67,28 @@ TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheMatchersOwn)
   ASSERT_EQ(clear.at("frames").size(), 2u);
 
   // The same first frame, matched and scored here directly: the tool must report exactly this.
-  evaluation::P3Options options;
+  eval::P3Options options;
   options.frames = 1;
   options.thirdCamera = true;
   options.width = 310;
   options.height = 94;
-  const auto frames = evaluation::loadP3(options);
+  const auto frames = eval::loadP3(options);
   ASSERT_EQ(frames.size(), 1u);
-  const evaluation::EvalFrame& f = frames[0];
-  Parameters params;
-  params.numDisparities = f.numDisparities;
-  auto matcher = Matcher::create(Backend::Auto, params);
-  Image<std::int16_t> disparity(f.left.cols, f.left.rows);
-  matcher->compute(io::grayView(f.left), io::grayView(f.right), &f.lidar, disparity.view());
-  const eval::DisparityMetrics fused = eval::evaluateDisparity(disparity.view(), f.groundTruth.view(), f.exclude.view());
+  const eval::EvalFrame& f = frames[0];
+  // As lidar_sgm_densify runs it: the Densifier on the projected scan.
+  Densifier densifier;
+  densifier.parameters().numDisparities = f.numDisparities;
+  densifier.setComputeCloud(false);
+  densifier.setStereoPair(io::grayView(f.left), io::grayView(f.right));
+  densifier.runProjected(&f.lidar);
+  const eval::DisparityMetrics fused =
+      eval::evaluateDisparity(densifier.disparity().view(), f.groundTruth.view(), f.exclude.view());
 
   const nlohmann::json& frame = clear.at("frames").at(0);
   EXPECT_EQ(frame.at("frame"), f.name);
   bool found = false;
   for (const auto& m : frame.at("methods")) {
-    if (m.at("method") != "LiDAR-SGM (alpha 0.7)") continue;
+    if (m.at("method") != "fused_sgm" || m.at("best_alpha").get<bool>() || m.at("alpha").get<double>() != 0.7) continue;
     found = true;
     EXPECT_DOUBLE_EQ(m.at("correct").get<double>(), fused.correct);
     EXPECT_DOUBLE_EQ(m.at("rmse").get<double>(), fused.rmse);
@@ -102,7 +105,7 @@ TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheMatchersOwn)
   EXPECT_NE(text.str().find("IP-Basic"), std::string::npos);
 }
 
-TEST_F(EvalCli, HalfScaleRunReportsTheMatchersOwnFiguresAndItsSettings) {
+TEST_F(EvalCli, HalfScaleRunReportsTheDensifiersFiguresAndItsSettings) {
   const RunResult r = runTool("-protocols P3 -p3_sets rain64 -synth_frames 1 -synth_size 310x94 -alpha_step 1 "
                               "-scale 0.5 -threads 2 -no_pictures -out " + dir_.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -111,24 +114,25 @@ TEST_F(EvalCli, HalfScaleRunReportsTheMatchersOwnFiguresAndItsSettings) {
   EXPECT_EQ(json.at("settings").at("scale").get<double>(), 0.5);
   EXPECT_EQ(json.at("settings").at("threads").get<int>(), 2);
 
-  evaluation::P3Options options;
+  eval::P3Options options;
   options.frames = 1;
   options.rain = true;
   options.width = 310;
   options.height = 94;
-  const auto frames = evaluation::loadP3(options);
+  const auto frames = eval::loadP3(options);
   ASSERT_EQ(frames.size(), 1u);
-  const evaluation::EvalFrame& f = frames[0];
-  Parameters params;
-  params.scale = 0.5f;
-  params.numDisparities = evaluation::numDisparitiesAt(f.numDisparities, 0.5f);
-  auto matcher = Matcher::create(Backend::Auto, params);
-  Image<std::int16_t> disparity(f.left.cols, f.left.rows);
-  matcher->compute(io::grayView(f.left), io::grayView(f.right), &f.lidar, disparity.view());
-  const eval::DisparityMetrics fused = eval::evaluateDisparity(disparity.view(), f.groundTruth.view(), f.exclude.view());
+  const eval::EvalFrame& f = frames[0];
+  Densifier densifier;
+  densifier.parameters().scale = 0.5f;
+  densifier.parameters().numDisparities = eval::numDisparitiesAt(f.numDisparities, 0.5f);
+  densifier.setComputeCloud(false);
+  densifier.setStereoPair(io::grayView(f.left), io::grayView(f.right));
+  densifier.runProjected(&f.lidar);
+  const eval::DisparityMetrics fused =
+      eval::evaluateDisparity(densifier.disparity().view(), f.groundTruth.view(), f.exclude.view());
   bool found = false;
   for (const auto& m : json.at("protocols").at(0).at("frames").at(0).at("methods")) {
-    if (m.at("method") != "LiDAR-SGM (alpha 0.7)") continue;
+    if (m.at("method") != "fused_sgm" || m.at("best_alpha").get<bool>() || m.at("alpha").get<double>() != 0.7) continue;
     found = true;
     EXPECT_DOUBLE_EQ(m.at("correct").get<double>(), fused.correct);
     EXPECT_DOUBLE_EQ(m.at("rmse").get<double>(), fused.rmse);
@@ -138,6 +142,26 @@ TEST_F(EvalCli, HalfScaleRunReportsTheMatchersOwnFiguresAndItsSettings) {
   std::stringstream text;
   text << md.rdbuf();
   EXPECT_NE(text.str().find("matched at scale 0.5"), std::string::npos) << text.str();
+}
+
+TEST_F(EvalCli, TheDataRootIsTheOptionElseTheEnvironmentElseBesideTheWorkingDirectory) {
+  // An empty folder holds no P1 frame: the error names the root the tool looked in.
+  const fs::path empty = dir_ / "empty_data";
+  fs::create_directories(empty);
+  const RunResult fromEnvironment = runTool("-protocols P1 -out " + (dir_ / "out").string(),
+                                            "LIDAR_SGM_DATA=" + empty.string());
+  EXPECT_NE(fromEnvironment.exitCode, 0);
+  EXPECT_NE(fromEnvironment.output.find("under '" + empty.string() + "'"), std::string::npos) << fromEnvironment.output;
+
+  const fs::path other = dir_ / "other_data";
+  fs::create_directories(other);
+  const RunResult fromOption = runTool("-protocols P1 -data " + other.string() + " -out " + (dir_ / "out").string(),
+                                       "LIDAR_SGM_DATA=" + empty.string());
+  EXPECT_NE(fromOption.output.find("under '" + other.string() + "'"), std::string::npos) << fromOption.output;
+
+  const RunResult byDefault = runTool("-protocols P1 -out " + (dir_ / "out").string(), "cd " + dir_.string() +
+                                      " && LIDAR_SGM_DATA=");
+  EXPECT_NE(byDefault.output.find("under '../shared/data'"), std::string::npos) << byDefault.output;
 }
 
 TEST_F(EvalCli, BadOptionsFailWithAMessage) {

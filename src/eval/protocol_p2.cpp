@@ -5,15 +5,15 @@
 #include <string>
 #include <vector>
 
-#include "eval/lidar_rings.hpp"
-#include "eval/protocols.hpp"
+#include "lidar_rings.hpp"
+#include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 namespace fs = std::filesystem;
 
@@ -183,5 +183,5 @@ std::vector<EvalFrame> loadP2(const std::string& dataRoot) {
   return frames;
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

@@ -1,11 +1,11 @@
-#include "eval/lidar_rings.hpp"
+#include "lidar_rings.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 constexpr double kRadToDeg = 57.29577951308232;
@@ -111,5 +111,5 @@ RingStatistics ringStatistics(const std::vector<Eigen::Vector3f>& points, const 
   return s;
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

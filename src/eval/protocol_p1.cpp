@@ -1,6 +1,7 @@
 // Protocol P1: GT frames with a simulated 64-beam LiDAR; and the helpers every loader shares.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -9,14 +10,21 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "eval/protocols.hpp"
+#include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/eval/simulated_lidar.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 namespace fs = std::filesystem;
+
+std::string resolveDataRoot(const std::string& option) {
+  if (!option.empty()) return option;
+  const char* env = std::getenv("LIDAR_SGM_DATA");
+  if (env != nullptr && *env != '\0') return env;
+  return "../shared/data";
+}
 
 int numDisparitiesFor(double maxDisparity) {
   const double needed = maxDisparity + 8.0;
@@ -175,5 +183,5 @@ std::vector<EvalFrame> loadP1(const std::string& dataRoot) {
   return frames;
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

@@ -1,4 +1,4 @@
-#include "eval/baselines.hpp"
+#include "baselines.hpp"
 
 #include <cmath>
 #include <limits>
@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -196,5 +196,5 @@ Image<std::int16_t> morphologicalCompletion(const Image<std::int16_t>& sparseDis
   return disparityFromInvertedDepth(median, focalBaseline);
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

@@ -12,7 +12,7 @@
 #include "eval/plots.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -190,5 +190,5 @@ TEST(Stack, SumsHeightsAndMatchesWidths) {
 }
 
 }  // namespace
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

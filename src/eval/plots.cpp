@@ -1,4 +1,4 @@
-#include "eval/plots.hpp"
+#include "plots.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "eval/pictures.hpp"
+#include "pictures.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 struct Range {
@@ -292,5 +292,5 @@ cv::Mat hconcat(const std::vector<cv::Mat>& images) {
   return result;
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

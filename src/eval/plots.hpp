@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 /// One line of a plot: points (x[i], y[i]) joined in order, with a marker at each. Non-finite
 /// points are skipped and break the line.
@@ -41,5 +41,5 @@ cv::Mat linePlot(const PlotSpec& spec);
 /// the bottom. Empty input gives an empty Mat.
 cv::Mat hconcat(const std::vector<cv::Mat>& images);
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

@@ -9,7 +9,7 @@
 #include "lidar_sgm/core/image.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 /// cv::StereoSGBM (MODE_SGBM_3WAY, minDisparity 0) with OpenCV's recommended penalties and the
 /// stereo_match sample's post-filters; see baselines.cpp for every value and its source.
@@ -28,5 +28,5 @@ Image<std::int16_t> opencvSgbm(const cv::Mat& leftGray, const cv::Mat& rightGray
 /// pipeline leaves no depth (> 0.1 m). Throws std::invalid_argument for focalBaseline <= 0.
 Image<std::int16_t> morphologicalCompletion(const Image<std::int16_t>& sparseDisparity16, double focalBaseline);
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

@@ -1,4 +1,4 @@
-// The frames of protocols P1, P2, P3 (apps/eval/protocols.hpp): every EvalFrame field filled and
+// The frames of protocols P1, P2, P3 (lidar_sgm/eval/protocols.hpp): every EvalFrame field filled and
 // consistent, on the shared third-party data (skipped when absent) and on synthetic frames.
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 
 #include "common/test_data.hpp"
 #include "eval/lidar_rings.hpp"
-#include "eval/methods.hpp"
-#include "eval/protocols.hpp"
+#include "lidar_sgm/eval/methods.hpp"
+#include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/eval/simulated_lidar.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
@@ -21,7 +21,7 @@
 #include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 std::size_t pixels(const EvalFrame& f) { return static_cast<std::size_t>(f.left.cols) * static_cast<std::size_t>(f.left.rows); }
@@ -404,5 +404,5 @@ TEST(ProtocolP3Names, DatasetNames) {
 }
 
 }  // namespace
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

@@ -10,7 +10,7 @@
 
 #include <unistd.h>
 
-#include "eval/protocols.hpp"
+#include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/synth/encoding.hpp"
@@ -18,7 +18,7 @@
 #include "lidar_sgm/synth/rig.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 namespace fs = std::filesystem;
 
@@ -116,5 +116,5 @@ std::vector<EvalFrame> loadP3(const P3Options& options) {
   return frames;
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

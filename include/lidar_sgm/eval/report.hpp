@@ -8,23 +8,37 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lidar_sgm/eval/methods.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
-
-using eval::DisparityMetrics;
+namespace eval {
 
 /// One method's scores on one frame.
 struct MethodResult {
-  std::string method;
+  Method method;
   DisparityMetrics metrics;
   double milliseconds = 0;  ///< run time of the method on the frame
+  /// The group's best alpha of the sweep (chosen on the same frames: an upper bound), reported
+  /// beside the same method at the paper's alpha.
+  bool bestAlpha = false;
 };
+
+/// Same method and the same role (sweep best or not): what the medians are grouped by.
+bool sameEntry(const MethodResult& a, const MethodResult& b);
+
+/// For tables and plots: displayName(method), or "LiDAR-SGM (best alpha 0.9)" for the sweep's best.
+std::string label(const MethodResult& result);
 
 struct FrameResult {
   std::string dataset, frame;
   std::vector<MethodResult> methods;
+};
+
+/// A method over a range of alphas: (alpha, median metrics over the frames at that alpha).
+struct AlphaSweep {
+  MethodKind kind = MethodKind::FusedSgm;
+  std::vector<std::pair<double, DisparityMetrics>> medians;
 };
 
 /// Everything one protocol measured.
@@ -32,8 +46,7 @@ struct ProtocolResult {
   std::string protocol;
   std::string description;
   std::vector<FrameResult> frames;
-  /// Parameter sweeps: name -> (alpha, median metrics over the frames at that alpha).
-  std::vector<std::pair<std::string, std::vector<std::pair<double, DisparityMetrics>>>> sweeps;
+  std::vector<AlphaSweep> sweeps;
 };
 
 /// Median of a list of values; for an even count the mean of the two middle values. 0 if empty.
@@ -43,9 +56,9 @@ double medianOf(std::vector<double> values);
 /// summed (the pixel counts behind the medians). Empty input gives default metrics.
 DisparityMetrics medianOver(const std::vector<DisparityMetrics>& metrics);
 
-/// Per method (in order of first appearance): its medians over the protocol's frames, and the
-/// median run time [ms].
-std::vector<std::pair<std::string, std::pair<DisparityMetrics, double>>> methodMedians(const ProtocolResult& result);
+/// Per method entry (sameEntry; in order of first appearance): its medians over the protocol's
+/// frames, with the median run time as `milliseconds`.
+std::vector<MethodResult> methodMedians(const ProtocolResult& result);
 
 /// Markdown: one row per frame x method (frame | method | correct % | RMSE px | D1 % |
 /// density %), then a "median" row per method over the frames; shares in percent with 2
@@ -53,11 +66,14 @@ std::vector<std::pair<std::string, std::pair<DisparityMetrics, double>>> methodM
 /// Frames are named "dataset/frame" (frame alone when dataset is empty).
 std::string markdownTable(const ProtocolResult& result);
 
-/// Every figure, machine-readable. Shares (correct, d1, d1_est, density) are fractions in
-/// [0, 1] as in DisparityMetrics, rmse in px, ms in milliseconds:
+/// Every figure, machine-readable. Methods are named by their stable id (methodId), with
+/// "alpha" where the method has one, "best_alpha" for the sweep's best, and "name" (the display
+/// name, for people only). Shares (correct, d1, d1_est, density) are fractions in [0, 1] as in
+/// DisparityMetrics, rmse in px, ms in milliseconds:
 /// {"protocols":[{"protocol","description","frames":[{"dataset","frame","methods":[{"method",
-/// "correct","rmse","d1","d1_est","density","gt_pixels","estimated_pixels","ms"}]}],
-/// "medians":{method:{... same fields}},"sweeps":{name:[{"alpha","correct","rmse",...}]}}]}
+/// ["alpha",] "best_alpha","name","correct","rmse","d1","d1_est","density","gt_pixels",
+/// "estimated_pixels","ms"}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
+/// "correct","rmse",...}]}}]}
 nlohmann::json toJson(const std::vector<ProtocolResult>& results);
 
 /// Writes `text` to a temporary file in the same directory and renames it over `path`, so a
@@ -65,5 +81,5 @@ nlohmann::json toJson(const std::vector<ProtocolResult>& results);
 /// does not exist or writing fails (no temporary file is left behind).
 void writeTextAtomically(const std::string& path, const std::string& text);
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

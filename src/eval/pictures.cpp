@@ -1,4 +1,4 @@
-#include "eval/pictures.hpp"
+#include "pictures.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 /// The KITTI stereo devkit's log-color table (devkit_stereo_flow/cpp: the `LC` table that
@@ -114,5 +114,5 @@ cv::Mat stack(const std::vector<cv::Mat>& images) {
   return result;
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

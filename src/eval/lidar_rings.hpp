@@ -22,7 +22,7 @@
 #include <pcl/point_types.h>
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 struct RingRecoveryOptions {
   /// A fall of the azimuth (in [0, 360) deg) by more than this starts a new ring.
@@ -56,5 +56,5 @@ struct RingStatistics {
 };
 RingStatistics ringStatistics(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& rings);
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

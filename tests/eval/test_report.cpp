@@ -10,10 +10,10 @@
 
 #include <unistd.h>
 
-#include "eval/report.hpp"
+#include "lidar_sgm/eval/report.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 namespace fs = std::filesystem;
 
@@ -53,24 +53,29 @@ ProtocolResult tinyProtocol() {
   ProtocolResult p;
   p.protocol = "P1";
   p.description = "KITTI 2015, LiDAR pixels excluded";
+  const Method fused{MethodKind::FusedSgm, 0.7};
+  const Method sgbm{MethodKind::OpenCvSgbm, 0.0};
   p.frames.push_back({"kitti2015", "000000",
-                      {{"fused", metrics(0.96123, 0.81234, 0.021, 0.98765), 12.5},
-                       {"sgbm", metrics(0.80, 1.25, 0.15, 0.90), 30.0}}});
+                      {{fused, metrics(0.96123, 0.81234, 0.021, 0.98765), 12.5},
+                       {sgbm, metrics(0.80, 1.25, 0.15, 0.90), 30.0}}});
   p.frames.push_back({"kitti2015", "000001",
-                      {{"fused", metrics(0.94, 0.7, 0.03, 0.99), 13.5},
-                       {"sgbm", metrics(0.82, 1.35, 0.13, 0.92), 31.0}}});
-  p.sweeps.push_back({"alpha", {{0.0, metrics(0.9, 1.0, 0.05, 0.97)}, {0.5, metrics(0.95, 0.8, 0.03, 0.98)}}});
+                      {{fused, metrics(0.94, 0.7, 0.03, 0.99), 13.5},
+                       {sgbm, metrics(0.82, 1.35, 0.13, 0.92), 31.0}}});
+  p.sweeps.push_back({MethodKind::FusedSgm, {{0.0, metrics(0.9, 1.0, 0.05, 0.97)}, {0.5, metrics(0.95, 0.8, 0.03, 0.98)}}});
   return p;
 }
 
 TEST(MarkdownTable, RowsPerFrameAndMethodThenMedians) {
   const std::string table = markdownTable(tinyProtocol());
   EXPECT_NE(table.find("| frame | method | correct % | RMSE px | D1 % | density % |"), std::string::npos) << table;
-  EXPECT_NE(table.find("| kitti2015/000000 | fused | 96.12 | 0.812 | 2.10 | 98.77 |"), std::string::npos) << table;
-  EXPECT_NE(table.find("| kitti2015/000001 | sgbm | 82.00 | 1.350 | 13.00 | 92.00 |"), std::string::npos) << table;
+  // Tables are for people: display names.
+  EXPECT_NE(table.find("| kitti2015/000000 | LiDAR-SGM (alpha 0.7) | 96.12 | 0.812 | 2.10 | 98.77 |"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find("| kitti2015/000001 | OpenCV StereoSGBM | 82.00 | 1.350 | 13.00 | 92.00 |"), std::string::npos)
+      << table;
   // Medians of two frames: mean of both.
-  EXPECT_NE(table.find("| median | fused | 95.06 | 0.756 | 2.55 | 98.88 |"), std::string::npos) << table;
-  EXPECT_NE(table.find("| median | sgbm | 81.00 | 1.300 | 14.00 | 91.00 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| median | LiDAR-SGM (alpha 0.7) | 95.06 | 0.756 | 2.55 | 98.88 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| median | OpenCV StereoSGBM | 81.00 | 1.300 | 14.00 | 91.00 |"), std::string::npos) << table;
   EXPECT_LT(table.find("| kitti2015/000001 |"), table.find("| median |"));  // medians come last
   EXPECT_NE(table.find("| 0.50 | 95.00 | 0.800 | 3.00 | 98.00 |"), std::string::npos) << table;  // the sweep
 }
@@ -81,16 +86,46 @@ TEST(ToJson, RoundTripsEveryFigure) {
   const nlohmann::json& p1 = parsed.at("protocols").at(0);
   EXPECT_EQ(p1.at("protocol"), "P1");
   const nlohmann::json& fused = p1.at("frames").at(0).at("methods").at(0);
-  EXPECT_EQ(fused.at("method"), "fused");
+  // Machines read the stable id and the alpha, never the display name.
+  EXPECT_EQ(fused.at("method"), "fused_sgm");
+  EXPECT_DOUBLE_EQ(fused.at("alpha").get<double>(), 0.7);
+  EXPECT_EQ(fused.at("best_alpha"), false);
+  EXPECT_EQ(fused.at("name"), "LiDAR-SGM (alpha 0.7)");
+  const nlohmann::json& sgbm = p1.at("frames").at(0).at("methods").at(1);
+  EXPECT_EQ(sgbm.at("method"), "opencv_sgbm");
+  EXPECT_FALSE(sgbm.contains("alpha"));  // SGBM has no LiDAR weight
   EXPECT_DOUBLE_EQ(fused.at("correct").get<double>(), 0.96123);
   EXPECT_DOUBLE_EQ(fused.at("d1_est").get<double>(), 0.0105);
   EXPECT_EQ(fused.at("gt_pixels").get<long>(), 100);
   EXPECT_DOUBLE_EQ(fused.at("ms").get<double>(), 12.5);
-  EXPECT_DOUBLE_EQ(p1.at("medians").at("sgbm").at("rmse").get<double>(), 1.3);
-  EXPECT_DOUBLE_EQ(p1.at("medians").at("fused").at("ms").get<double>(), 13.0);
-  EXPECT_EQ(p1.at("medians").at("sgbm").at("gt_pixels").get<long>(), 200);
-  EXPECT_DOUBLE_EQ(p1.at("sweeps").at("alpha").at(1).at("alpha").get<double>(), 0.5);
-  EXPECT_DOUBLE_EQ(p1.at("sweeps").at("alpha").at(1).at("correct").get<double>(), 0.95);
+  ASSERT_EQ(p1.at("medians").size(), 2u);
+  EXPECT_EQ(p1.at("medians").at(0).at("method"), "fused_sgm");
+  EXPECT_DOUBLE_EQ(p1.at("medians").at(0).at("ms").get<double>(), 13.0);
+  EXPECT_EQ(p1.at("medians").at(1).at("method"), "opencv_sgbm");
+  EXPECT_DOUBLE_EQ(p1.at("medians").at(1).at("rmse").get<double>(), 1.3);
+  EXPECT_EQ(p1.at("medians").at(1).at("gt_pixels").get<long>(), 200);
+  EXPECT_DOUBLE_EQ(p1.at("sweeps").at("fused_sgm").at(1).at("alpha").get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(p1.at("sweeps").at("fused_sgm").at(1).at("correct").get<double>(), 0.95);
+}
+
+TEST(MethodMedians, KeepsAlphasAndTheSweepsBestApart) {
+  // The same kind at two alphas, and the sweep's best at the paper's alpha: three entries.
+  ProtocolResult p;
+  MethodResult best{{MethodKind::FusedSgm, 0.7}, metrics(0.99, 0.5, 0.01, 1.0), 0.0};
+  best.bestAlpha = true;
+  for (const char* frame : {"a", "b"}) {
+    p.frames.push_back({"d", frame,
+                        {{{MethodKind::FusedSgm, 0.7}, metrics(0.9, 1, 0.1, 1), 1.0},
+                         {{MethodKind::FusedSgm, 0.5}, metrics(0.8, 1, 0.2, 1), 1.0},
+                         best}});
+  }
+  const std::vector<MethodResult> medians = methodMedians(p);
+  ASSERT_EQ(medians.size(), 3u);
+  EXPECT_DOUBLE_EQ(medians[0].metrics.correct, 0.9);
+  EXPECT_DOUBLE_EQ(medians[1].metrics.correct, 0.8);
+  EXPECT_TRUE(medians[2].bestAlpha);
+  EXPECT_EQ(label(medians[2]), "LiDAR-SGM (best alpha 0.7)");
+  EXPECT_EQ(medians[2].metrics.gtPixels, 200);
 }
 
 /// A fresh, empty directory for one test, removed afterwards.
@@ -135,5 +170,5 @@ TEST_F(ScratchDir, WriteTextAtomicallyRefusesAMissingDirectory) {
 }
 
 }  // namespace
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

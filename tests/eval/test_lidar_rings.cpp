@@ -1,4 +1,4 @@
-// Ring recovery of KITTI velodyne scans (apps/eval/lidar_rings.hpp), for P2's ring hold-out.
+// Ring recovery of KITTI velodyne scans (src/eval/lidar_rings.hpp), for P2's ring hold-out.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "lidar_sgm/io/cloud_io.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -137,5 +137,5 @@ INSTANTIATE_TEST_SUITE_P(Kitti, KittiScanRings,
                          [](const ::testing::TestParamInfo<RealScan>& paramInfo) { return std::string(paramInfo.param.id); });
 
 }  // namespace
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

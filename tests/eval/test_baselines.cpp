@@ -10,7 +10,7 @@
 #include "eval/baselines.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace {
 
 constexpr int kWidth = 160;
@@ -122,5 +122,5 @@ TEST(MorphologicalCompletion, RejectsANonPositiveFocalBaseline) {
 }
 
 }  // namespace
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

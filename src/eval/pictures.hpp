@@ -11,7 +11,7 @@
 #include "lidar_sgm/core/image.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 /// Disparity error per ground-truth pixel, |d_est - d_gt| [px], colored with the KITTI stereo
 /// devkit's 10 log-scale bins (dark blue < 0.1875 px ... dark red >= 48 px; see pictures.cpp).
@@ -35,5 +35,5 @@ cv::Mat stack(const std::vector<cv::Mat>& images);
 /// std::invalid_argument for empty images and other types.
 cv::Mat asBgr8(const cv::Mat& image);
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

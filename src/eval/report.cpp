@@ -1,4 +1,4 @@
-#include "eval/report.hpp"
+#include "lidar_sgm/eval/report.hpp"
 
 #include <unistd.h>
 
@@ -12,7 +12,7 @@
 #include <system_error>
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 namespace fs = std::filesystem;
 namespace {
 
@@ -54,21 +54,20 @@ void appendFrameTable(std::ostringstream& out, const ProtocolResult& result) {
   out << "| --- | --- | " << kMetricAlignment << " |\n";
   for (const FrameResult& frame : result.frames) {
     for (const MethodResult& method : frame.methods) {
-      out << "| " << cell(frameName(frame)) << " | " << cell(method.method) << " | " << metricCells(method.metrics)
+      out << "| " << cell(frameName(frame)) << " | " << cell(label(method)) << " | " << metricCells(method.metrics)
           << " |\n";
     }
   }
-  for (const auto& [method, medians] : methodMedians(result)) {
-    out << "| median | " << cell(method) << " | " << metricCells(medians.first) << " |\n";
+  for (const MethodResult& median : methodMedians(result)) {
+    out << "| median | " << cell(label(median)) << " | " << metricCells(median.metrics) << " |\n";
   }
 }
 
-void appendSweepTable(std::ostringstream& out, const std::string& name,
-                      const std::vector<std::pair<double, DisparityMetrics>>& points) {
-  out << "\nSweep: " << name << " (medians over frames)\n\n";
+void appendSweepTable(std::ostringstream& out, const AlphaSweep& sweep) {
+  out << "\nSweep over alpha: " << methodId(sweep.kind) << " (medians over frames)\n\n";
   out << "| alpha | " << kMetricHeader << " |\n";
   out << "| ---: | " << kMetricAlignment << " |\n";
-  for (const auto& [alpha, metrics] : points) out << "| " << fixed(alpha, 2) << " | " << metricCells(metrics) << " |\n";
+  for (const auto& [alpha, metrics] : sweep.medians) out << "| " << fixed(alpha, 2) << " | " << metricCells(metrics) << " |\n";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -80,34 +79,36 @@ nlohmann::json metricsJson(const DisparityMetrics& m) {
           {"estimated_pixels", m.estimatedPixels}};
 }
 
+nlohmann::json methodJson(const MethodResult& method) {
+  nlohmann::json entry = metricsJson(method.metrics);
+  entry["method"] = methodId(method.method.kind);
+  if (method.method.usesAlpha()) entry["alpha"] = method.method.alpha;
+  entry["best_alpha"] = method.bestAlpha;
+  entry["name"] = label(method);
+  entry["ms"] = method.milliseconds;
+  return entry;
+}
+
 nlohmann::json frameJson(const FrameResult& frame) {
   nlohmann::json methods = nlohmann::json::array();
-  for (const MethodResult& method : frame.methods) {
-    nlohmann::json entry = metricsJson(method.metrics);
-    entry["method"] = method.method;
-    entry["ms"] = method.milliseconds;
-    methods.push_back(entry);
-  }
+  for (const MethodResult& method : frame.methods) methods.push_back(methodJson(method));
   return {{"dataset", frame.dataset}, {"frame", frame.frame}, {"methods", methods}};
 }
 
 nlohmann::json protocolJson(const ProtocolResult& result) {
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameResult& frame : result.frames) frames.push_back(frameJson(frame));
-  nlohmann::json medians = nlohmann::json::object();
-  for (const auto& [method, medianPair] : methodMedians(result)) {
-    medians[method] = metricsJson(medianPair.first);
-    medians[method]["ms"] = medianPair.second;
-  }
+  nlohmann::json medians = nlohmann::json::array();
+  for (const MethodResult& median : methodMedians(result)) medians.push_back(methodJson(median));
   nlohmann::json sweeps = nlohmann::json::object();
-  for (const auto& [name, points] : result.sweeps) {
+  for (const AlphaSweep& sweep : result.sweeps) {
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& [alpha, metrics] : points) {
+    for (const auto& [alpha, metrics] : sweep.medians) {
       nlohmann::json entry = metricsJson(metrics);
       entry["alpha"] = alpha;
       list.push_back(entry);
     }
-    sweeps[name] = list;
+    sweeps[methodId(sweep.kind)] = list;
   }
   return {{"protocol", result.protocol}, {"description", result.description}, {"frames", frames},
           {"medians", medians},          {"sweeps", sweeps}};
@@ -161,16 +162,30 @@ DisparityMetrics medianOver(const std::vector<DisparityMetrics>& metrics) {
   return result;
 }
 
-std::vector<std::pair<std::string, std::pair<DisparityMetrics, double>>> methodMedians(const ProtocolResult& result) {
-  std::vector<std::string> order;
+bool sameEntry(const MethodResult& a, const MethodResult& b) {
+  return a.bestAlpha == b.bestAlpha && sameMethod(a.method, b.method);
+}
+
+std::string label(const MethodResult& result) {
+  if (!result.bestAlpha) return displayName(result.method);
+  char text[64];
+  std::snprintf(text, sizeof(text), "LiDAR-SGM (best alpha %.1f)", result.method.alpha);
+  return text;
+}
+
+std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
+  std::vector<MethodResult> entries;
   std::vector<std::vector<DisparityMetrics>> metrics;
   std::vector<std::vector<double>> milliseconds;
   for (const FrameResult& frame : result.frames) {
     for (const MethodResult& method : frame.methods) {
-      const auto found = std::find(order.begin(), order.end(), method.method);
-      const std::size_t index = static_cast<std::size_t>(found - order.begin());
-      if (found == order.end()) {
-        order.push_back(method.method);
+      // The best alpha may differ between groups but is one per group: matched by role alone.
+      const auto found = std::find_if(entries.begin(), entries.end(), [&method](const MethodResult& e) {
+        return method.bestAlpha ? e.bestAlpha : sameEntry(e, method);
+      });
+      const std::size_t index = static_cast<std::size_t>(found - entries.begin());
+      if (found == entries.end()) {
+        entries.push_back(method);
         metrics.emplace_back();
         milliseconds.emplace_back();
       }
@@ -178,17 +193,17 @@ std::vector<std::pair<std::string, std::pair<DisparityMetrics, double>>> methodM
       milliseconds[index].push_back(method.milliseconds);
     }
   }
-  std::vector<std::pair<std::string, std::pair<DisparityMetrics, double>>> medians;
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    medians.push_back({order[i], {medianOver(metrics[i]), medianOf(milliseconds[i])}});
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    entries[i].metrics = medianOver(metrics[i]);
+    entries[i].milliseconds = medianOf(milliseconds[i]);
   }
-  return medians;
+  return entries;
 }
 
 std::string markdownTable(const ProtocolResult& result) {
   std::ostringstream out;
   appendFrameTable(out, result);
-  for (const auto& [name, points] : result.sweeps) appendSweepTable(out, name, points);
+  for (const AlphaSweep& sweep : result.sweeps) appendSweepTable(out, sweep);
   return out.str();
 }
 
@@ -222,5 +237,5 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
   }
 }
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

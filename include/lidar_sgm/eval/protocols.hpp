@@ -17,12 +17,18 @@
 
 #include <Eigen/Core>
 
-#include "eval/eval_frame.hpp"
+#include "lidar_sgm/eval/eval_frame.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
+
+/// The folder that holds the third-party datasets: `option` when not empty (the tools' -data),
+/// else $LIDAR_SGM_DATA when set and not empty, else "../shared/data" relative to the working
+/// directory (the data beside the repository, run from its root). A run-time choice, never a
+/// path fixed at build time: an installed tool has no source tree beside it.
+std::string resolveDataRoot(const std::string& option = "");
 
 /// f*b used for KITTI frames without a calibration file (stereo 2012/2015, the sparse sample):
 /// KITTI 2015's rectified focal length and its ~0.54 m baseline (2012's f is 707 px: ~2 % off,
@@ -103,5 +109,5 @@ std::vector<EvalFrame> loadP3(const P3Options& options);
 /// "synth_<clear|rain>_<64|128>[_3cam]".
 std::string p3DatasetName(const P3Options& options);
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

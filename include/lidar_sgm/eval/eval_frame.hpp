@@ -10,7 +10,7 @@
 #include "lidar_sgm/core/lidar_points.hpp"
 
 namespace lidar_sgm {
-namespace evaluation {
+namespace eval {
 
 struct EvalFrame {
   std::string protocol;  ///< "P1", "P2", "P3"
@@ -29,5 +29,5 @@ struct EvalFrame {
   int numDisparities = 128;         ///< search range for this frame (multiple of 16)
 };
 
-}  // namespace evaluation
+}  // namespace eval
 }  // namespace lidar_sgm

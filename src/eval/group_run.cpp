@@ -1,0 +1,126 @@
+#include "lidar_sgm/eval/group_run.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+#include "frame_pictures.hpp"
+#include "lidar_sgm/eval/alpha_sweep.hpp"
+
+namespace lidar_sgm {
+namespace eval {
+namespace {
+
+/// All results of one frame: per method, and the sweep (alpha -> metrics).
+struct FrameRun {
+  FrameResult result;
+  std::vector<std::pair<double, DisparityMetrics>> sweep;
+  std::vector<std::pair<Method, Image<std::int16_t>>> disparities;  ///< kept for the pictures
+};
+
+DisparityMetrics score(const EvalFrame& f, const Image<std::int16_t>& d) {
+  return evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view());
+}
+
+FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, const GroupRunOptions& options,
+                  const Parameters& base) {
+  FrameRun run;
+  run.result.dataset = frame.dataset;
+  run.result.frame = frame.name;
+  for (const Method& m : methods) {
+    MethodOutput out = runMethod(m, frame, base, options.backend);
+    run.result.methods.push_back({m, score(frame, out.disparity), out.milliseconds});
+    run.disparities.emplace_back(m, std::move(out.disparity));
+  }
+  for (double alpha : options.alphas) {
+    const Method fused{MethodKind::FusedSgm, alpha};
+    MethodOutput out = runMethod(fused, frame, base, options.backend);
+    run.sweep.emplace_back(alpha, score(frame, out.disparity));
+    if (std::abs(alpha - kPaperAlpha) < 1e-9) {
+      run.result.methods.push_back({fused, run.sweep.back().second, out.milliseconds});
+      run.disparities.emplace_back(fused, std::move(out.disparity));
+    }
+  }
+  return run;
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::vector<Method> baseMethods() {
+  return {{MethodKind::StereoSgm, 0.0}, {MethodKind::LidarSgm, 1.0}, {MethodKind::OpenCvSgbm, 0.0},
+          {MethodKind::Morphological, 0.0}};
+}
+
+std::string slug(const std::string& text) {
+  std::string s;
+  for (char c : text) s += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '_';
+  return s;
+}
+
+ProtocolResult runGroup(const FrameGroup& group, const GroupRunOptions& options) {
+  if (options.alphas.empty()) throw std::invalid_argument("runGroup: the alpha sweep is empty");
+  const int threads = std::max(1, options.threads);
+  const int workers = std::max(1, std::min(threads, static_cast<int>(group.frames.size())));
+  Parameters base = options.base;
+  base.threads = std::max(1, threads / workers);
+  std::vector<FrameRun> runs(group.frames.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex printMutex;
+  std::vector<std::string> errors(group.frames.size());
+  auto worker = [&]() {
+    for (std::size_t i = next++; i < group.frames.size(); i = next++) {
+      try {
+        const auto start = std::chrono::steady_clock::now();
+        runs[i] = runFrame(group.frames[i], group.methods, options, base);
+        if (!options.picturesDir.empty()) writeFramePictures(options.picturesDir, group.frames[i], runs[i].disparities);
+        runs[i].disparities.clear();  // the pictures are written; the memory is not needed
+        std::lock_guard<std::mutex> lock(printMutex);
+        std::printf("  %s / %s [done, %.0f ms]\n", group.frames[i].dataset.c_str(), group.frames[i].name.c_str(),
+                    millisecondsSince(start));
+        std::fflush(stdout);
+      } catch (const std::exception& e) {
+        errors[i] = group.frames[i].name + ": " + e.what();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < workers; ++t) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  for (const std::string& e : errors) {
+    if (!e.empty()) throw std::runtime_error(group.name + ", frame " + e);
+  }
+
+  ProtocolResult result;
+  result.protocol = group.name;
+  result.description = group.description;
+  AlphaSweep sweep;
+  for (std::size_t a = 0; a < options.alphas.size(); ++a) {
+    std::vector<DisparityMetrics> perFrame;
+    for (const FrameRun& r : runs) perFrame.push_back(r.sweep[a].second);
+    sweep.medians.emplace_back(options.alphas[a], medianOver(perFrame));
+  }
+  const std::size_t best = bestAlphaIndex(sweep.medians);
+  for (FrameRun& run : runs) {
+    FrameResult frame = std::move(run.result);
+    MethodResult bestResult{{MethodKind::FusedSgm, options.alphas[best]}, run.sweep[best].second, 0.0};
+    bestResult.bestAlpha = true;
+    frame.methods.push_back(bestResult);
+    result.frames.push_back(std::move(frame));
+  }
+  result.sweeps.push_back(std::move(sweep));
+  return result;
+}
+
+}  // namespace eval
+}  // namespace lidar_sgm

@@ -1,0 +1,123 @@
+#include "lidar_sgm/eval/methods.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "baselines.hpp"
+#include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/pipeline/densifier.hpp"
+
+namespace lidar_sgm {
+namespace eval {
+
+const std::vector<MethodKind>& allMethodKinds() {
+  static const std::vector<MethodKind> kinds{MethodKind::StereoSgm,     MethodKind::LidarSgm,   MethodKind::FusedSgm,
+                                             MethodKind::OpenCvSgbm,    MethodKind::Morphological,
+                                             MethodKind::ThreeCameras, MethodKind::ThreeCamerasLidar};
+  return kinds;
+}
+
+const char* methodId(MethodKind kind) {
+  switch (kind) {
+    case MethodKind::StereoSgm: return "stereo_sgm";
+    case MethodKind::LidarSgm: return "lidar_sgm";
+    case MethodKind::FusedSgm: return "fused_sgm";
+    case MethodKind::OpenCvSgbm: return "opencv_sgbm";
+    case MethodKind::Morphological: return "ip_basic";
+    case MethodKind::ThreeCameras: return "triple_sgm";
+    case MethodKind::ThreeCamerasLidar: return "triple_fused_sgm";
+  }
+  return "?";
+}
+
+MethodKind methodKindFromId(const std::string& id) {
+  std::string known;
+  for (MethodKind kind : allMethodKinds()) {
+    if (id == methodId(kind)) return kind;
+    known += std::string(known.empty() ? "" : ", ") + methodId(kind);
+  }
+  throw std::invalid_argument("unknown method '" + id + "' (known: " + known + ")");
+}
+
+bool sameMethod(const Method& a, const Method& b) {
+  // The sweep's alphas are rounded to 1e-3, so a tolerance well below that is exact enough.
+  return a.kind == b.kind && (!a.usesAlpha() || std::abs(a.alpha - b.alpha) < 1e-9);
+}
+
+std::string displayName(const Method& method) {
+  char alphaText[32];
+  std::snprintf(alphaText, sizeof(alphaText), "%.2g", method.alpha);
+  switch (method.kind) {
+    case MethodKind::StereoSgm: return "stereo-only SGM";
+    case MethodKind::LidarSgm: return "LiDAR-only SGM";
+    case MethodKind::FusedSgm: return std::string("LiDAR-SGM (alpha ") + alphaText + ")";
+    case MethodKind::OpenCvSgbm: return "OpenCV StereoSGBM";
+    case MethodKind::Morphological: return "IP-Basic (morphological)";
+    case MethodKind::ThreeCameras: return "3 cameras (Triple-SGM)";
+    case MethodKind::ThreeCamerasLidar: return std::string("3 cameras + LiDAR (alpha ") + alphaText + ")";
+  }
+  return "?";
+}
+
+int numDisparitiesAt(int frameNumDisparities, float scale) {
+  if (scale == 1.0f) return frameNumDisparities;
+  return std::min(512, 32 * ((frameNumDisparities + 31) / 32));
+}
+
+namespace {
+
+/// A LiDAR-SGM method as the tools run it: the Densifier on the frame's projected scan, its mode
+/// following the inputs it is given (and the LiDAR-only crop on, its default).
+Image<std::int16_t> runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params,
+                                 Backend backend) {
+  const bool images = method.kind != MethodKind::LidarSgm;
+  const bool lidar = method.kind == MethodKind::LidarSgm || method.kind == MethodKind::FusedSgm ||
+                     method.kind == MethodKind::ThreeCamerasLidar;
+  Densifier densifier;
+  densifier.setParameters(params);
+  densifier.setBackend(backend);
+  densifier.setComputeCloud(false);  // the protocols score the disparity
+  if (images) densifier.setStereoPair(io::grayView(frame.left), io::grayView(frame.right));
+  if (method.needsThirdCamera()) densifier.setUpCamera(io::grayView(frame.up), frame.upBaselineRatio);
+  densifier.runProjected(lidar ? &frame.lidar : nullptr);
+  return densifier.disparity();
+}
+
+}  // namespace
+
+MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend) {
+  if (method.needsThirdCamera() && frame.up.empty()) {
+    throw std::invalid_argument(displayName(method) + " needs a third camera; frame " + frame.name + " has none");
+  }
+  MethodOutput out;
+  const auto start = std::chrono::steady_clock::now();
+  switch (method.kind) {
+    case MethodKind::OpenCvSgbm:
+      out.disparity = opencvSgbm(frame.left, frame.right, frame.numDisparities, 5);
+      break;
+    case MethodKind::Morphological:
+      out.disparity = morphologicalCompletion(frame.lidarSparse, frame.focalBaseline);
+      break;
+    case MethodKind::StereoSgm:
+    case MethodKind::LidarSgm:
+    case MethodKind::FusedSgm:
+    case MethodKind::ThreeCameras:
+    case MethodKind::ThreeCamerasLidar: {
+      Parameters params = base;
+      params.numDisparities = numDisparitiesAt(frame.numDisparities, base.scale);
+      // The kinds without a LiDAR weight of their own have it by definition (MethodKind).
+      params.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
+                                        : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
+      out.disparity = runDensifier(method, frame, params, backend);
+      break;
+    }
+  }
+  out.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace eval
+}  // namespace lidar_sgm
