@@ -40,7 +40,17 @@ cv::Mat readGrayImage(const std::string& path) {
   if (image.depth() != CV_8U && image.depth() != CV_16U) {
     throw std::runtime_error("cannot use image '" + path + "': only 8- and 16-bit images are supported");
   }
+  return toGray(image);
+}
+
+cv::Mat toGray(const cv::Mat& image) {
+  if (image.depth() != CV_8U && image.depth() != CV_16U) {
+    throw std::invalid_argument("toGray: expected an 8- or 16-bit image, got depth " + std::to_string(image.depth()));
+  }
   if (image.channels() == 1) return image;
+  if (image.channels() != 3 && image.channels() != 4) {
+    throw std::invalid_argument("toGray: expected 1, 3 or 4 channels, got " + std::to_string(image.channels()));
+  }
   cv::Mat gray;
   cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
   return gray;

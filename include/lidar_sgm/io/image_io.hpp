@@ -22,6 +22,10 @@ cv::Mat readColorImage(const std::string& path);
 /// A core view of an 8- or 16-bit single-channel cv::Mat (no copy).
 GrayImageView grayView(const cv::Mat& gray);
 
+/// An 8- or 16-bit gray, BGR or BGRA image as gray of the same depth (BGR2GRAY; gray is
+/// returned as is, not copied). Throws std::invalid_argument for other depths or channels.
+cv::Mat toGray(const cv::Mat& image);
+
 /// KITTI disparity PNG (uint16, disparity*256, 0 = none) -> x16 disparities (kInvalidDisparity).
 Image<std::int16_t> readKittiDisparity(const std::string& path);
 

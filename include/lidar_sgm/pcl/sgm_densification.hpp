@@ -36,8 +36,7 @@ namespace lidar_sgm {
 ///
 /// // One KITTI-layout frame, e.g. densify("data/sample", "000000").
 /// pcl::PointCloud<pcl::PointXYZRGB> densify(const std::string& dir, const std::string& name) {
-///   auto scan = pcl::make_shared<pcl::PointCloud<pcl::PointXYZI>>(
-///       lidar_sgm::io::readCloud(dir + "/velodyne/" + name + ".bin"));     // LiDAR frame
+///   auto scan = lidar_sgm::io::readCloud(dir + "/velodyne/" + name + ".bin").makeShared();  // LiDAR frame
 ///   const cv::Mat left = lidar_sgm::io::readColorImage(dir + "/image_2/" + name + ".png");
 ///   const cv::Mat right = lidar_sgm::io::readColorImage(dir + "/image_3/" + name + ".png");
 ///
@@ -96,11 +95,8 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// for matching (BT.601 weights, as OpenCV's BGR2GRAY); the left one also colors the output
   /// unless setColorImage() was called.
   void setStereoPair(const ImageCloud& left, const ImageCloud& right);
-  /// 8-bit gray rectified pair (copied).
-  void setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right);
-  /// 16-bit gray rectified pair (copied); matched at full depth.
-  void setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right);
-  /// 8- or 16-bit gray pair (both the same depth), e.g. io::grayView() of two cv::Mat.
+  /// 8- or 16-bit gray rectified pair (copied), both of the same depth, matched at that depth:
+  /// ImageView<const uint8_t> or <const uint16_t> convert to it, as does io::grayView(cv::Mat).
   void setStereoPair(const GrayImageView& left, const GrayImageView& right);
   /// Back to LiDAR-only mode.
   void clearStereoPair();

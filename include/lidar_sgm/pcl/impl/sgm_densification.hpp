@@ -88,18 +88,6 @@ void SGMDensification<PointInT, PointOutT>::setStereoPair(const GrayImageView& l
 }
 
 template <typename PointInT, typename PointOutT>
-void SGMDensification<PointInT, PointOutT>::setStereoPair(ImageView<const std::uint8_t> left,
-                                                         ImageView<const std::uint8_t> right) {
-  setStereoPair(GrayImageView(left), GrayImageView(right));
-}
-
-template <typename PointInT, typename PointOutT>
-void SGMDensification<PointInT, PointOutT>::setStereoPair(ImageView<const std::uint16_t> left,
-                                                         ImageView<const std::uint16_t> right) {
-  setStereoPair(GrayImageView(left), GrayImageView(right));
-}
-
-template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::clearStereoPair() {
   densifier_.clearStereoPair();
   if (!explicitColor_) densifier_.setColorImage(ImageView<const Rgb8>());
