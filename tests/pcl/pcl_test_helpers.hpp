@@ -1,6 +1,7 @@
 #pragma once
 // A small rig and a wall scan for the SGMDensification tests: a scene whose result is known.
 
+#include <cmath>
 #include <cstdint>
 
 #include <pcl/point_cloud.h>

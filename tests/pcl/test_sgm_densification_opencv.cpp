@@ -49,7 +49,8 @@ void expectSame(const Image<std::int16_t>& a, const Image<std::int16_t>& b) {
 
 TEST(SGMDensificationOpenCV, GrayAndColorMatsMatchAsTheViewsAndPclImagesDo) {
   const Fixture f;
-  const Image<std::int16_t> reference = f.disparity([&](Sgm& s) { s.setStereoPair(f.stereo.left.view(), f.stereo.right.view()); });
+  const Image<std::int16_t> reference =
+      f.disparity([&](Sgm& s) { s.setStereoPair(f.stereo.left.view(), f.stereo.right.view()); });
   expectSame(f.disparity([&](Sgm& s) { setStereoPair(s, f.left8, f.right8); }), reference);
 
   // 16 bit: the same order of intensities, so the same census.

@@ -176,7 +176,9 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   double getOcclusionMinGap() const { return densifier_.projectionOptions().occlusion.minGap; }
   void setOcclusionRelativeGap(double fraction) { densifier_.projectionOptions().occlusion.relativeGap = fraction; }
   double getOcclusionRelativeGap() const { return densifier_.projectionOptions().occlusion.relativeGap; }
-  void setOcclusionRequireEnclosed(bool enclosed) { densifier_.projectionOptions().occlusion.requireEnclosed = enclosed; }
+  void setOcclusionRequireEnclosed(bool enclosed) {
+    densifier_.projectionOptions().occlusion.requireEnclosed = enclosed;
+  }
   bool getOcclusionRequireEnclosed() const { return densifier_.projectionOptions().occlusion.requireEnclosed; }
   void setProjectionOptions(const geometry::ProjectionOptions& options) { densifier_.setProjectionOptions(options); }
   const geometry::ProjectionOptions& getProjectionOptions() const { return densifier_.projectionOptions(); }
@@ -200,7 +202,9 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// Every `stride`-th pixel in x and y (default 1).
   void setStride(int stride) { densifier_.reprojectionOptions().stride = stride; }
   int getStride() const { return densifier_.reprojectionOptions().stride; }
-  void setReprojectionOptions(const geometry::ReprojectionOptions& options) { densifier_.setReprojectionOptions(options); }
+  void setReprojectionOptions(const geometry::ReprojectionOptions& options) {
+    densifier_.setReprojectionOptions(options);
+  }
   const geometry::ReprojectionOptions& getReprojectionOptions() const { return densifier_.reprojectionOptions(); }
 
   // ---- one frame and its results ----------------------------------------------------------
@@ -213,8 +217,8 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   const Image<std::int16_t>& getDisparityImage() const { return densifier_.disparity(); }
   /// The dense depth z [m] of the last frame in the left camera, 0 where there is none.
   const Image<float>& getDepthImage() const { return densifier_.depth(); }
-  /// The projected scan of the last frame (sparse disparities, per-reason counts);
-  /// sourceIndex[i] is the index of samples[i]'s point in the input cloud.
+  /// The projected scan of the last frame (sparse disparities, per-reason counts), empty after
+  /// a failed one; sourceIndex[i] is the index of samples[i]'s point in the input cloud.
   const geometry::ProjectedLidar& getProjectedLidar() const { return projected_; }
   const DensificationTimings& getTimings() const { return densifier_.timings(); }
   MatchMode getLastMode() const { return densifier_.lastMode(); }

@@ -108,6 +108,7 @@ void SGMDensification<PointInT, PointOutT>::setColorImage(const ImageCloud& imag
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::fail(PointCloudOut& output, const std::string& message) {
   lastError_ = message;
+  projected_ = geometry::ProjectedLidar();  // not the previous frame's
   PCL_ERROR("[lidar_sgm::%s::filter] %s\n", getClassName().c_str(), message.c_str());
   output.clear();
   output.width = 0;
@@ -153,7 +154,6 @@ float SGMDensification<PointInT, PointOutT>::intensityAt(int x, int y) const {
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
   lastError_.clear();
-  projected_ = geometry::ProjectedLidar();
   if (!pendingError_.empty()) {
     fail(output, pendingError_);
     return;
@@ -183,7 +183,7 @@ void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
   }
   takeProjected();
   constexpr bool kHasIntensity = pcl::traits::has_intensity_v<PointOutT>;
-  if (kHasIntensity) mapLidarPixels();
+  if constexpr (kHasIntensity) mapLidarPixels();
 
   output.header = header;
   if (densifier_.reprojectionOptions().frame == geometry::OutputFrame::Camera) output.header.frame_id = cameraFrameId_;
