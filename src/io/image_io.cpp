@@ -48,7 +48,13 @@ cv::Mat readImage(const std::string& path) {
 }
 
 cv::Mat toGray(const cv::Mat& image) {
+  if (image.depth() != CV_8U && image.depth() != CV_16U) {
+    throw std::invalid_argument("toGray: expected an 8- or 16-bit image, got depth " + std::to_string(image.depth()));
+  }
   if (image.channels() == 1) return image;
+  if (image.channels() != 3 && image.channels() != 4) {
+    throw std::invalid_argument("toGray: expected 1, 3 or 4 channels, got " + std::to_string(image.channels()));
+  }
   cv::Mat gray;
   cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
   return gray;

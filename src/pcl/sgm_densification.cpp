@@ -1,10 +1,9 @@
-// Explicit instantiations of SGMDensification for the point types ARCHITECTURE.md lists, so
-// users of these types do not compile the template body.
+// Explicit instantiations of SGMDensification, with PCL's macros as its own filters do, so that
+// users of these types do not compile the template body: every PCL type with x, y, z in, and
+// XYZ / XYZRGB / XYZRGBA / XYZI out (LIDAR_SGM_PCL_{INPUT,OUTPUT}_POINT_TYPES).
+#include <pcl/impl/instantiate.hpp>
+#include <pcl/point_types.h>
+
 #include "lidar_sgm/pcl/impl/sgm_densification.hpp"
 
-template class lidar_sgm::SGMDensification<pcl::PointXYZ, pcl::PointXYZ>;
-template class lidar_sgm::SGMDensification<pcl::PointXYZ, pcl::PointXYZRGB>;
-template class lidar_sgm::SGMDensification<pcl::PointXYZ, pcl::PointXYZRGBA>;
-template class lidar_sgm::SGMDensification<pcl::PointXYZI, pcl::PointXYZ>;
-template class lidar_sgm::SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB>;
-template class lidar_sgm::SGMDensification<pcl::PointXYZI, pcl::PointXYZRGBA>;
+PCL_INSTANTIATE_PRODUCT(SGMDensification, (LIDAR_SGM_PCL_INPUT_POINT_TYPES)(LIDAR_SGM_PCL_OUTPUT_POINT_TYPES))

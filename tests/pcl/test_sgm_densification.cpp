@@ -1,13 +1,18 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
 #include "common/synthetic_stereo.hpp"
 #include "geometry/geometry_test_helpers.hpp"
+#include "pcl/pcl_test_helpers.hpp"
 #include "lidar_sgm/pcl/sgm_densification.hpp"
 
 using lidar_sgm::MatchMode;
@@ -16,64 +21,20 @@ using lidar_sgm::geometry::OutputFrame;
 using lidar_sgm::geometry::StereoCalibration;
 using lidar_sgm::test::lidarPointAt;
 
+using lidar_sgm::test::cameraDepth;
+using lidar_sgm::test::kWallDepth;
+using lidar_sgm::test::pixelCodedImage;
+using lidar_sgm::test::wallScan;
+
 namespace {
 
-/// 160x96 image, fx = fy = 200, baseline 0.5 m: f*b = 100, so a wall at 4 m has d = 25 px.
-/// The LiDAR mounting is the geometry tests' (KITTI-like, 0.3 m behind, 0.1 m above, 2 deg yaw).
-StereoCalibration rig() {
-  StereoCalibration c = lidar_sgm::test::smallRig();
-  c.width = 160;
-  c.height = 96;
-  c.K << 200, 0, 80, 0, 200, 48, 0, 0, 1;
-  c.baseline = 0.5;
-  return c;
-}
-
-constexpr double kWallDepth = 4.0;
-
-/// A LiDAR-like scan of a wall at 4 m (left part) and one at 50 m (right of column 120): every
-/// 2nd column, every 4th row, as XYZI with intensity = column.
-template <typename PointT>
-typename pcl::PointCloud<PointT>::Ptr wallScan(const StereoCalibration& c, bool farRight = false) {
-  typename pcl::PointCloud<PointT>::Ptr scan(new pcl::PointCloud<PointT>);
-  for (int v = 2; v < c.height; v += 4) {
-    for (int u = 0; u < c.width; u += 2) {
-      const Eigen::Vector3f p = lidarPointAt(c, u, v, farRight && u > 120 ? 50.0 : kWallDepth);
-      PointT q;
-      q.x = p.x();
-      q.y = p.y();
-      q.z = p.z();
-      scan->push_back(q);
-    }
-  }
-  scan->header.frame_id = "velodyne";
-  scan->header.stamp = 1234567;
-  return scan;
-}
-
-/// The depth of a LiDAR-frame point seen from the left camera.
-double cameraDepth(const StereoCalibration& c, const Eigen::Vector3f& p) {
-  return (c.T_cam_lidar * p.cast<double>()).z();
-}
+StereoCalibration rig() { return lidar_sgm::test::pclRig(); }
 
 pcl::PointCloud<pcl::RGB> toRgb(const lidar_sgm::Image<std::uint8_t>& gray) {
   pcl::PointCloud<pcl::RGB> image(static_cast<std::uint32_t>(gray.width()), static_cast<std::uint32_t>(gray.height()));
   for (int y = 0; y < gray.height(); ++y) {
     for (int x = 0; x < gray.width(); ++x) {
       image.at(x, y).r = image.at(x, y).g = image.at(x, y).b = gray(x, y);
-    }
-  }
-  return image;
-}
-
-/// A color image whose color encodes the pixel: r = x, g = y, b = 7.
-pcl::PointCloud<pcl::RGB> pixelCodedImage(int width, int height) {
-  pcl::PointCloud<pcl::RGB> image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      image.at(x, y).r = static_cast<std::uint8_t>(x);
-      image.at(x, y).g = static_cast<std::uint8_t>(y);
-      image.at(x, y).b = 7;
     }
   }
   return image;
@@ -166,35 +127,64 @@ TEST(SGMDensification, CameraFrameIsTcamLidarTimesTheLidarFrame) {
 TEST(SGMDensification, HonoursIndices) {
   const StereoCalibration c = rig();
   auto scan = wallScan<pcl::PointXYZI>(c);
-  const std::size_t wallPoints = scan->size();
-  // Append a decoy at 1.5 m in front of the wall: only indices into the wall are given.
+  std::vector<std::pair<int, int>> pixelOf;  // the pixel each input point was placed at
   for (int v = 2; v < c.height; v += 4) {
-    for (int u = 0; u < c.width; u += 2) {
-      const Eigen::Vector3f p = lidarPointAt(c, u, v, 1.5);
-      pcl::PointXYZI q;
-      q.x = p.x();
-      q.y = p.y();
-      q.z = p.z();
-      scan->push_back(q);
-    }
+    for (int u = 0; u < c.width; u += 2) pixelOf.emplace_back(u, v);
   }
+  ASSERT_EQ(pixelOf.size(), scan->size());
+  // Interleave a decoy at 1.5 m in front of the wall after every wall point: only indices of
+  // wall points are given, so positions in the index list and input indices differ.
+  pcl::PointCloud<pcl::PointXYZI>::Ptr mixed(new pcl::PointCloud<pcl::PointXYZI>);
+  mixed->header = scan->header;
   pcl::IndicesPtr wall(new pcl::Indices);
-  for (std::size_t i = 0; i < wallPoints; ++i) wall->push_back(static_cast<pcl::index_t>(i));
-  SGMDensification<pcl::PointXYZI, pcl::PointXYZ> sgm;
-  sgm.setInputCloud(scan);
+  for (std::size_t i = 0; i < scan->size(); ++i) {
+    wall->push_back(static_cast<pcl::index_t>(mixed->size()));
+    mixed->push_back((*scan)[i]);
+    const Eigen::Vector3f p = lidarPointAt(c, pixelOf[i].first, pixelOf[i].second, 1.5);
+    pcl::PointXYZI decoy;
+    decoy.x = p.x();
+    decoy.y = p.y();
+    decoy.z = p.z();
+    decoy.intensity = -1.0f;
+    mixed->push_back(decoy);
+  }
+  std::reverse(wall->begin(), wall->end());  // and not in input order either
+  SGMDensification<pcl::PointXYZI, pcl::PointXYZI> sgm;
+  sgm.setInputCloud(mixed);
   sgm.setIndices(wall);
   sgm.setCalibration(c);
   sgm.setNumDisparities(128);  // 1.5 m is d = 66.7 px: searchable, so it would show
-  pcl::PointCloud<pcl::PointXYZ> dense;
+  sgm.setKeepOrganized(true);
+  pcl::PointCloud<pcl::PointXYZI> dense;
   sgm.filter(dense);
   ASSERT_FALSE(dense.empty()) << sgm.getLastError();
-  EXPECT_EQ(sgm.getProjectedLidar().stats.input, wallPoints);
-  for (const auto& p : dense) ASSERT_NEAR(cameraDepth(c, p.getVector3fMap()), kWallDepth, 0.02);
+  for (const auto& p : dense) {
+    if (std::isfinite(p.x)) {
+      ASSERT_NEAR(cameraDepth(c, p.getVector3fMap()), kWallDepth, 0.02);
+    }
+  }
+
+  // sourceIndex names the input point, not its position in the index list: the input point
+  // (even index i, wall point i / 2) was placed at the sample's pixel, and its intensity is
+  // what the output carries there.
+  const auto& projected = sgm.getProjectedLidar();
+  EXPECT_EQ(projected.stats.input, wall->size());
+  ASSERT_EQ(projected.sourceIndex.size(), projected.samples.size());
+  ASSERT_EQ(projected.samples.size(), wall->size());
+  for (std::size_t k = 0; k < projected.samples.size(); ++k) {
+    const std::size_t source = projected.sourceIndex[k];
+    ASSERT_LT(source, mixed->size());
+    ASSERT_EQ(source % 2, 0u) << "a decoy: " << source;
+    const auto& s = projected.samples[k];
+    ASSERT_EQ(pixelOf[source / 2], std::make_pair(s.x, s.y)) << "sample " << k << " from input " << source;
+    ASSERT_EQ(dense.at(s.x, s.y).intensity, (*mixed)[source].intensity);
+  }
 
   sgm.setIndices(pcl::IndicesPtr(new pcl::Indices));
   sgm.filter(dense);
   EXPECT_TRUE(dense.empty());
   EXPECT_NE(sgm.getLastError().find("empty"), std::string::npos) << sgm.getLastError();
+  EXPECT_TRUE(sgm.getProjectedLidar().samples.empty());
 }
 
 TEST(SGMDensification, ColorComesFromTheColorImageAtEachPointsPixel) {
@@ -315,21 +305,6 @@ TEST(SGMDensification, HalfScaleGivesAFullResolutionResult) {
   }
 }
 
-TEST(SGMDensification, ParametersReachTheMatcherUnchanged) {
-  SGMDensification<pcl::PointXYZI, pcl::PointXYZ> sgm;
-  lidar_sgm::Parameters params;
-  params.scale = 0.5f;
-  params.threads = 3;
-  params.numDisparities = 96;
-  sgm.setParameters(params);
-  EXPECT_EQ(sgm.getScale(), 0.5f);
-  EXPECT_EQ(sgm.getNumberOfThreads(), 3);
-  EXPECT_EQ(sgm.getNumDisparities(), 96);
-  sgm.setNumberOfThreads(0);
-  EXPECT_EQ(sgm.getParameters().threads, 0);
-  EXPECT_EQ(sgm.getParameters().scale, 0.5f);
-}
-
 TEST(SGMDensification, ThreadCountNeverChangesTheResult) {
   const StereoCalibration c = rig();
   const auto stereo = lidar_sgm::test::makeStereo(c.width, c.height, [](double x, double) { return 20.0 + x / 16.0; });
@@ -427,33 +402,4 @@ TEST(SGMDensification, NoInputCloudIsAnError) {
   sgm.filter(out);
   EXPECT_TRUE(out.empty());
   EXPECT_NE(sgm.getLastError().find("no input cloud"), std::string::npos) << sgm.getLastError();
-}
-
-template <typename Types>
-class SGMDensificationTypes : public ::testing::Test {};
-template <typename In, typename Out>
-struct PointTypes {
-  using PointIn = In;
-  using PointOut = Out;
-};
-using Instantiated = ::testing::Types<PointTypes<pcl::PointXYZ, pcl::PointXYZ>, PointTypes<pcl::PointXYZ, pcl::PointXYZRGB>,
-                                      PointTypes<pcl::PointXYZ, pcl::PointXYZRGBA>, PointTypes<pcl::PointXYZI, pcl::PointXYZ>,
-                                      PointTypes<pcl::PointXYZI, pcl::PointXYZRGB>, PointTypes<pcl::PointXYZI, pcl::PointXYZRGBA>>;
-TYPED_TEST_SUITE(SGMDensificationTypes, Instantiated);
-
-TYPED_TEST(SGMDensificationTypes, EachInstantiatedTypeDensifies) {
-  const StereoCalibration c = rig();
-  typename SGMDensification<typename TypeParam::PointIn, typename TypeParam::PointOut>::Ptr sgm(
-      new SGMDensification<typename TypeParam::PointIn, typename TypeParam::PointOut>);
-  sgm->setInputCloud(wallScan<typename TypeParam::PointIn>(c));
-  sgm->setCalibration(c);
-  sgm->setNumDisparities(64);
-  sgm->setColorImage(pixelCodedImage(c.width, c.height));
-  pcl::PointCloud<typename TypeParam::PointOut> dense;
-  sgm->filter(dense);
-  ASSERT_FALSE(dense.empty()) << sgm->getLastError();
-  EXPECT_NEAR(cameraDepth(c, dense[dense.size() / 2].getVector3fMap()), kWallDepth, 0.02);
-  if constexpr (pcl::traits::has_color_v<typename TypeParam::PointOut>) {
-    EXPECT_EQ(dense[0].b, 7);  // colored from the pixel-coded image
-  }
 }

@@ -79,6 +79,12 @@ struct Rgb8 {
 constexpr int kDisparityFractionBits = 4;
 constexpr int kDisparityScale = 1 << kDisparityFractionBits;
 /// Marks a pixel without an estimate (also "no LiDAR point" in sparse disparity images).
+/// One value for every minDisparity, unlike OpenCV (below), so a disparity image needs no
+/// parameters beside it to be read.
 constexpr std::int16_t kInvalidDisparity = std::numeric_limits<std::int16_t>::min();
+/// OpenCV StereoSGBM's invalid x16 value, (minDisparity - 1) * 16, one step below its search
+/// range; io::toOpenCvDisparity() converts our images to it. In [-8208, 8176] for
+/// minDisparity in [-512, 512].
+constexpr int openCvInvalidDisparity16(int minDisparity) { return (minDisparity - 1) * kDisparityScale; }
 
 }  // namespace lidar_sgm

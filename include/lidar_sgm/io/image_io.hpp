@@ -16,7 +16,9 @@ namespace io {
 /// and toColor() then give what matching and coloring need. Throws std::runtime_error naming
 /// the file when it is missing, not an image, or of another depth / channel count.
 cv::Mat readImage(const std::string& path);
-/// Gray, keeping 8 or 16 bits (BGR(A) converted with OpenCV's BT.601 weights; gray shared, not copied).
+/// An 8- or 16-bit gray, BGR or BGRA image as gray of the same depth (BGR2GRAY, OpenCV's BT.601
+/// weights; gray is returned as is, not copied). Throws std::invalid_argument for other depths or
+/// channels.
 cv::Mat toGray(const cv::Mat& image);
 /// 8-bit BGR (16 bit scaled by 1/257, gray expanded, alpha dropped).
 cv::Mat toColor(const cv::Mat& image);

@@ -2,14 +2,22 @@
 /// @file sgm_densification.hpp  LiDAR-SGM as a PCL algorithm: sparse scan in, dense colored
 /// cloud out.
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include <Eigen/Core>
 #include <pcl/pcl_base.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
 #include "lidar_sgm/pipeline/densifier.hpp"
+
+/// The point types src/pcl/sgm_densification.cpp instantiates (Boost.PP sequences, as PCL's own):
+/// every PCL type with x, y, z in, and these out. Other types: include impl/sgm_densification.hpp.
+#define LIDAR_SGM_PCL_INPUT_POINT_TYPES PCL_XYZ_POINT_TYPES
+#define LIDAR_SGM_PCL_OUTPUT_POINT_TYPES (pcl::PointXYZ)(pcl::PointXYZRGB)(pcl::PointXYZRGBA)(pcl::PointXYZI)
 
 namespace lidar_sgm {
 
@@ -17,26 +25,50 @@ namespace lidar_sgm {
 /// their fusion (LiDAR-SGM, Eq. 5), and returns the dense cloud, colored from the left image
 /// when the output type has color.
 ///
-/// Used like a PCL filter:
+/// Used like a PCL filter (the README's example; tests/pcl/test_readme_example.cpp compiles and
+/// runs this exact text on data/sample):
 /// @code
+/// #include <lidar_sgm/io/calibration_io.hpp>
+/// #include <lidar_sgm/io/cloud_io.hpp>
+/// #include <lidar_sgm/io/image_io.hpp>
+/// #include <lidar_sgm/pcl/sgm_densification.hpp>
+/// #include <lidar_sgm/pcl/sgm_densification_opencv.hpp>
+///
+/// // One KITTI-layout frame, e.g. densify("data/sample", "000000").
+/// pcl::PointCloud<pcl::PointXYZRGB> densify(const std::string& dir, const std::string& name) {
+///   auto scan = lidar_sgm::io::readCloud(dir + "/velodyne/" + name + ".bin").makeShared();  // LiDAR frame
+///   const cv::Mat left = lidar_sgm::io::readColorImage(dir + "/image_2/" + name + ".png");
+///   const cv::Mat right = lidar_sgm::io::readColorImage(dir + "/image_3/" + name + ".png");
+///
 ///   lidar_sgm::SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB> sgm;
-///   sgm.setInputCloud(scan);                                  // LiDAR frame
-///   sgm.setCalibration(lidar_sgm::io::readCalibration("calib.txt"));
-///   sgm.setStereoPair(left, right);   // organized pcl::PointCloud<pcl::RGB>; omit -> LiDAR-only
-///   sgm.setAlpha(0.7f);               // LiDAR weight (Eq. 5)
+///   sgm.setInputCloud(scan);                    // setIndices() is honoured
+///   sgm.setCalibration(lidar_sgm::io::readCalibration(dir + "/calib/" + name + ".txt"));
+///   lidar_sgm::setStereoPair(sgm, left, right); // cv::Mat; omit -> LiDAR-only SGM
+///   sgm.setAlpha(0.7f);                         // LiDAR weight (Eq. 5); every Parameters field has a setter
+///   sgm.setNumberOfThreads(0);                  // 0 = all hardware threads; never changes the result
+///   sgm.setKeepOrganized(false);                // setOutputFrame, setMaxDepth, setStride, setColorImage
 ///   pcl::PointCloud<pcl::PointXYZRGB> dense;
-///   sgm.filter(dense);                // empty + PCL_ERROR on bad input
+///   sgm.filter(dense);                          // empty + PCL_ERROR on bad input; getLastError() says why
+///   return dense;                               // getDisparityImage(), getDepthImage(), getTimings()
+/// }
 /// @endcode
 ///
 /// - Mode: no stereo pair -> LiDAR-only SGM (alpha is not used); with a pair -> fused
 ///   (alpha in (0, 1]; alpha 0 keeps the LiDAR only for the left-right check's coverage).
-/// - Indices set with setIndices() select the points that are projected.
+/// - Indices set with setIndices() select the points that are projected; getProjectedLidar()'s
+///   sourceIndex still refers to the input cloud, not to positions in the index list.
 /// - Output: in the input's frame (header copied) by default; setOutputFrame(Camera) gives the
 ///   rectified left camera's frame, with frame_id from setCameraFrameId(). Organized output
 ///   (setKeepOrganized(true)) has one point per pixel (per stride step) with NaN where no
 ///   disparity was found and is_dense = false; unorganized output has valid points only.
 /// - Color: from setColorImage(), else from the left image of the pair; written only when
 ///   PointOutT has color fields. Without any image the color fields keep their default.
+/// - Intensity, written only when PointOutT has an intensity field (pcl::PointXYZI), per
+///   output point's pixel: (1) where a LiDAR point of the input projected into that pixel and
+///   PointInT has intensity, that point's intensity (the nearest one when several share the
+///   pixel, as in the sparse disparity); (2) else, with a color image or a stereo pair, the
+///   pixel's gray value in 0..255, unscaled (BT.601 weights, as pcl::PointXYZRGBtoXYZI and the
+///   gray used for matching; a 16-bit pair gives its high byte); (3) else NaN.
 /// - Errors (no input, empty cloud, invalid calibration or parameter, image size mismatch,
 ///   no point in the image) print PCL_ERROR naming the problem and leave the output empty;
 ///   getLastError() returns the message.
@@ -47,90 +79,151 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   using ConstPtr = std::shared_ptr<const SGMDensification<PointInT, PointOutT>>;
   using PointCloudIn = pcl::PointCloud<PointInT>;
   using PointCloudOut = pcl::PointCloud<PointOutT>;
-  /// PCL's image type: an organized cloud of colors (e.g. from pcl::io::loadPNGFile or an
-  /// organized RGB-D grabber).
+  /// PCL's image type: an organized cloud of colors (from an organized RGB-D grabber, or
+  /// io::toPclImage() from a cv::Mat; PCL 1.13 itself reads no PNG into a cloud).
   using ImageCloud = pcl::PointCloud<pcl::RGB>;
 
   SGMDensification() = default;
   ~SGMDensification() override = default;
 
-  void setCalibration(const geometry::StereoCalibration& calibration) { pipeline_.setCalibration(calibration); }
-  const geometry::StereoCalibration& getCalibration() const { return pipeline_.calibration(); }
+  // ---- calibration and images (sgm_densification_opencv.hpp adds cv::Mat overloads) --------
+
+  void setCalibration(const geometry::StereoCalibration& calibration) { densifier_.setCalibration(calibration); }
+  const geometry::StereoCalibration& getCalibration() const { return densifier_.calibration(); }
 
   /// Rectified left and right images, organized (width x height), same size. Converted to gray
   /// for matching (BT.601 weights, as OpenCV's BGR2GRAY); the left one also colors the output
   /// unless setColorImage() was called.
   void setStereoPair(const ImageCloud& left, const ImageCloud& right);
-  /// 8-bit gray rectified pair (copied).
-  void setStereoPair(ImageView<const std::uint8_t> left, ImageView<const std::uint8_t> right);
-  /// 16-bit gray rectified pair (copied); matched at full depth.
-  void setStereoPair(ImageView<const std::uint16_t> left, ImageView<const std::uint16_t> right);
+  /// 8- or 16-bit gray rectified pair (copied), both of the same depth, matched at that depth:
+  /// ImageView<const uint8_t> or <const uint16_t> convert to it, as does io::grayView(cv::Mat).
+  void setStereoPair(const GrayImageView& left, const GrayImageView& right);
   /// Back to LiDAR-only mode.
   void clearStereoPair();
   /// The image that colors the output (organized, the rectified left camera's size); also
   /// colors a LiDAR-only result.
   void setColorImage(const ImageCloud& image);
 
-  void setAlpha(float alpha) { pipeline_.parameters().alpha = alpha; }
-  float getAlpha() const { return pipeline_.parameters().alpha; }
-  void setSigma(float sigma) { pipeline_.parameters().sigma = sigma; }
-  float getSigma() const { return pipeline_.parameters().sigma; }
-  void setNumDisparities(int n) { pipeline_.parameters().numDisparities = n; }
-  int getNumDisparities() const { return pipeline_.parameters().numDisparities; }
-  void setP1(int p1) { pipeline_.parameters().P1 = p1; }
-  int getP1() const { return pipeline_.parameters().P1; }
-  void setP2(int p2) { pipeline_.parameters().P2 = p2; }
-  int getP2() const { return pipeline_.parameters().P2; }
-  void setPaths(int paths) { pipeline_.parameters().paths = paths; }
-  int getPaths() const { return pipeline_.parameters().paths; }
+  // ---- matcher parameters: lidar_sgm::Parameters (meaning and ranges there); checked in filter()
+
+  void setMinDisparity(int d) { densifier_.parameters().minDisparity = d; }
+  int getMinDisparity() const { return densifier_.parameters().minDisparity; }
+  void setNumDisparities(int n) { densifier_.parameters().numDisparities = n; }
+  int getNumDisparities() const { return densifier_.parameters().numDisparities; }
+  void setP1(int p1) { densifier_.parameters().P1 = p1; }
+  int getP1() const { return densifier_.parameters().P1; }
+  void setP2(int p2) { densifier_.parameters().P2 = p2; }
+  int getP2() const { return densifier_.parameters().P2; }
+  void setPaths(int paths) { densifier_.parameters().paths = paths; }
+  int getPaths() const { return densifier_.parameters().paths; }
+  void setAlpha(float alpha) { densifier_.parameters().alpha = alpha; }
+  float getAlpha() const { return densifier_.parameters().alpha; }
+  void setSigma(float sigma) { densifier_.parameters().sigma = sigma; }
+  float getSigma() const { return densifier_.parameters().sigma; }
+  void setLidarCostCap(int cap) { densifier_.parameters().lidarCostCap = cap; }
+  int getLidarCostCap() const { return densifier_.parameters().lidarCostCap; }
+  void setStereoCostWithoutLidar(bool full) { densifier_.parameters().stereoCostWithoutLidar = full; }
+  bool getStereoCostWithoutLidar() const { return densifier_.parameters().stereoCostWithoutLidar; }
+  void setUniquenessRatio(int percent) { densifier_.parameters().uniquenessRatio = percent; }
+  int getUniquenessRatio() const { return densifier_.parameters().uniquenessRatio; }
+  void setLRCheck(bool check) { densifier_.parameters().lrCheck = check; }
+  bool getLRCheck() const { return densifier_.parameters().lrCheck; }
+  void setLRCheckWithLidar(bool check) { densifier_.parameters().lrCheckWithLidar = check; }
+  bool getLRCheckWithLidar() const { return densifier_.parameters().lrCheckWithLidar; }
+  void setDisp12MaxDiff(int pixels) { densifier_.parameters().disp12MaxDiff = pixels; }
+  int getDisp12MaxDiff() const { return densifier_.parameters().disp12MaxDiff; }
+  void setLidarCoverageRows(int rows) { densifier_.parameters().lidarCoverageRows = rows; }
+  int getLidarCoverageRows() const { return densifier_.parameters().lidarCoverageRows; }
+  void setMedianSize(int size) { densifier_.parameters().medianSize = size; }
+  int getMedianSize() const { return densifier_.parameters().medianSize; }
+  void setSubpixel(bool subpixel) { densifier_.parameters().subpixel = subpixel; }
+  bool getSubpixel() const { return densifier_.parameters().subpixel; }
+  void setCensusType(CensusType type) { densifier_.parameters().censusType = type; }
+  CensusType getCensusType() const { return densifier_.parameters().censusType; }
   /// Matching resolution: 1 (default) or 0.5, the paper's half-scale mode (about 4x less work;
   /// numDisparities must then be a multiple of 32). The disparity image and an organized output
-  /// keep the full size either way. Checked in filter().
-  void setScale(float scale) { pipeline_.parameters().scale = scale; }
-  float getScale() const { return pipeline_.parameters().scale; }
-  /// Matcher threads, 0 = all hardware threads (default); in [0, 256], checked in filter(). The
-  /// result never depends on it. PCL's name, as pcl::NormalEstimationOMP::setNumberOfThreads.
-  void setNumberOfThreads(int threads) { pipeline_.parameters().threads = threads; }
-  int getNumberOfThreads() const { return pipeline_.parameters().threads; }
-  /// Every matcher parameter at once (see lidar_sgm::Parameters); checked in filter().
-  void setParameters(const Parameters& params) { pipeline_.setParameters(params); }
-  const Parameters& getParameters() const { return pipeline_.parameters(); }
-  void setBackend(Backend backend) { pipeline_.setBackend(backend); }
+  /// keep the full size either way.
+  void setScale(float scale) { densifier_.parameters().scale = scale; }
+  float getScale() const { return densifier_.parameters().scale; }
+  /// Matcher threads, 0 = all hardware threads (default). The result never depends on it.
+  /// PCL's name, as pcl::NormalEstimationOMP::setNumberOfThreads.
+  void setNumberOfThreads(int threads) { densifier_.parameters().threads = threads; }
+  int getNumberOfThreads() const { return densifier_.parameters().threads; }
+  /// Every matcher parameter at once.
+  void setParameters(const Parameters& params) { densifier_.setParameters(params); }
+  const Parameters& getParameters() const { return densifier_.parameters(); }
+  /// The backend asked for (default Auto); getUsedBackend() tells which one matched.
+  void setBackend(Backend backend) { densifier_.setBackend(backend); }
+  Backend getBackend() const { return densifier_.backend(); }
 
-  /// Occlusion filter, depth range of the projected scan.
-  void setProjectionOptions(const geometry::ProjectionOptions& options) { pipeline_.setProjectionOptions(options); }
-  const geometry::ProjectionOptions& getProjectionOptions() const { return pipeline_.projectionOptions(); }
+  // ---- projection of the scan: geometry::ProjectionOptions; checked in filter() -------------
+
+  /// Scan points nearer / farther than these (z in the camera frame [m]) are not used
+  /// (defaults 0.5 and infinity).
+  void setMinPointDepth(double depth) { densifier_.projectionOptions().minDepth = depth; }
+  double getMinPointDepth() const { return densifier_.projectionOptions().minDepth; }
+  void setMaxPointDepth(double depth) { densifier_.projectionOptions().maxDepth = depth; }
+  double getMaxPointDepth() const { return densifier_.projectionOptions().maxDepth; }
+  /// The occlusion filter (geometry::OcclusionFilter): drops scan points that the camera
+  /// cannot see because a nearer surface encloses them.
+  void setOcclusionFilter(bool enabled) { densifier_.projectionOptions().occlusion.enabled = enabled; }
+  bool getOcclusionFilter() const { return densifier_.projectionOptions().occlusion.enabled; }
+  void setOcclusionHalfWidth(int pixels) { densifier_.projectionOptions().occlusion.halfWidth = pixels; }
+  int getOcclusionHalfWidth() const { return densifier_.projectionOptions().occlusion.halfWidth; }
+  void setOcclusionHalfHeight(int pixels) { densifier_.projectionOptions().occlusion.halfHeight = pixels; }
+  int getOcclusionHalfHeight() const { return densifier_.projectionOptions().occlusion.halfHeight; }
+  void setOcclusionMinGap(double pixels) { densifier_.projectionOptions().occlusion.minGap = pixels; }
+  double getOcclusionMinGap() const { return densifier_.projectionOptions().occlusion.minGap; }
+  void setOcclusionRelativeGap(double fraction) { densifier_.projectionOptions().occlusion.relativeGap = fraction; }
+  double getOcclusionRelativeGap() const { return densifier_.projectionOptions().occlusion.relativeGap; }
+  void setOcclusionRequireEnclosed(bool enclosed) {
+    densifier_.projectionOptions().occlusion.requireEnclosed = enclosed;
+  }
+  bool getOcclusionRequireEnclosed() const { return densifier_.projectionOptions().occlusion.requireEnclosed; }
+  void setProjectionOptions(const geometry::ProjectionOptions& options) { densifier_.setProjectionOptions(options); }
+  const geometry::ProjectionOptions& getProjectionOptions() const { return densifier_.projectionOptions(); }
 
   /// LiDAR-only mode: no points above the scan's top or below its bottom beam, per column,
   /// where nothing was measured (default true).
-  void setCropToScan(bool crop) { pipeline_.setCropToScan(crop); }
-  bool getCropToScan() const { return pipeline_.cropToScan(); }
+  void setCropToScan(bool crop) { densifier_.setCropToScan(crop); }
+  bool getCropToScan() const { return densifier_.cropToScan(); }
 
-  void setKeepOrganized(bool keep) { pipeline_.reprojectionOptions().keepOrganized = keep; }
-  bool getKeepOrganized() const { return pipeline_.reprojectionOptions().keepOrganized; }
-  void setOutputFrame(geometry::OutputFrame frame) { pipeline_.reprojectionOptions().frame = frame; }
-  geometry::OutputFrame getOutputFrame() const { return pipeline_.reprojectionOptions().frame; }
+  // ---- the output cloud: geometry::ReprojectionOptions; checked in filter() -----------------
+
+  void setKeepOrganized(bool keep) { densifier_.reprojectionOptions().keepOrganized = keep; }
+  bool getKeepOrganized() const { return densifier_.reprojectionOptions().keepOrganized; }
+  void setOutputFrame(geometry::OutputFrame frame) { densifier_.reprojectionOptions().frame = frame; }
+  geometry::OutputFrame getOutputFrame() const { return densifier_.reprojectionOptions().frame; }
   void setCameraFrameId(const std::string& frameId) { cameraFrameId_ = frameId; }
   const std::string& getCameraFrameId() const { return cameraFrameId_; }
   /// Output points deeper than this [m] are dropped (default 80 m; infinity keeps all).
-  void setMaxDepth(double maxDepth) { pipeline_.reprojectionOptions().maxDepth = maxDepth; }
-  double getMaxDepth() const { return pipeline_.reprojectionOptions().maxDepth; }
+  void setMaxDepth(double maxDepth) { densifier_.reprojectionOptions().maxDepth = maxDepth; }
+  double getMaxDepth() const { return densifier_.reprojectionOptions().maxDepth; }
   /// Every `stride`-th pixel in x and y (default 1).
-  void setStride(int stride) { pipeline_.reprojectionOptions().stride = stride; }
-  int getStride() const { return pipeline_.reprojectionOptions().stride; }
+  void setStride(int stride) { densifier_.reprojectionOptions().stride = stride; }
+  int getStride() const { return densifier_.reprojectionOptions().stride; }
+  void setReprojectionOptions(const geometry::ReprojectionOptions& options) {
+    densifier_.setReprojectionOptions(options);
+  }
+  const geometry::ReprojectionOptions& getReprojectionOptions() const { return densifier_.reprojectionOptions(); }
+
+  // ---- one frame and its results ----------------------------------------------------------
 
   /// Runs one frame. On error `output` is empty, PCL_ERROR says why, getLastError() too.
   void filter(PointCloudOut& output);
 
-  /// The dense disparity of the last frame: x16 fixed point, kInvalidDisparity where none.
-  const Image<std::int16_t>& getDisparityImage() const { return pipeline_.disparity(); }
-  /// The dense depth of the last frame: z [m] in the left camera, 0 where none or beyond the
-  /// max depth (KITTI depth completion's convention).
-  const Image<float>& getDepthImage() const { return pipeline_.depth(); }
-  /// The projected scan of the last frame (sparse disparities, per-reason counts).
-  const geometry::ProjectedLidar& getProjectedLidar() const { return pipeline_.projected(); }
-  const DensificationTimings& getTimings() const { return pipeline_.timings(); }
-  MatchMode getLastMode() const { return pipeline_.lastMode(); }
+  /// The dense disparity of the last frame: x16 fixed point, kInvalidDisparity where none
+  /// (io::toOpenCvDisparity() gives OpenCV's convention).
+  const Image<std::int16_t>& getDisparityImage() const { return densifier_.disparity(); }
+  /// The dense depth z [m] of the last frame in the left camera, 0 where there is none.
+  const Image<float>& getDepthImage() const { return densifier_.depth(); }
+  /// The projected scan of the last frame (sparse disparities, per-reason counts), empty after
+  /// a failed one; sourceIndex[i] is the index of samples[i]'s point in the input cloud.
+  const geometry::ProjectedLidar& getProjectedLidar() const { return projected_; }
+  const DensificationTimings& getTimings() const { return densifier_.timings(); }
+  MatchMode getLastMode() const { return densifier_.lastMode(); }
+  /// The backend that matched the last frame (Auto resolved); Auto before the first.
+  Backend getUsedBackend() const { return densifier_.usedBackend(); }
   const std::string& getLastError() const { return lastError_; }
 
   PCL_MAKE_ALIGNED_OPERATOR_NEW
@@ -145,8 +238,17 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
 
  private:
   void fail(PointCloudOut& output, const std::string& message);
+  /// projected_ from the densifier's, with sourceIndex mapped through indices_ to the input.
+  void takeProjected();
+  /// Per pixel, the projected_ sample of the nearest point, -1 where there is none.
+  void mapLidarPixels();
+  /// The intensity rule of the class comment for the output point at pixel (x, y).
+  float intensityAt(int x, int y) const;
 
-  Densifier pipeline_;
+  Densifier densifier_;
+  std::vector<Eigen::Vector3f> points_;   ///< the indexed input points, kept between frames
+  geometry::ProjectedLidar projected_;
+  Image<std::int32_t> lidarPixel_;        ///< for the intensity rule only
   std::string className_ = "SGMDensification";
   std::string cameraFrameId_ = "camera_left_rect";
   std::string lastError_;

@@ -3,6 +3,7 @@
 /// types other than the explicitly instantiated ones (or define PCL_NO_PRECOMPILE).
 
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <limits>
 #include <type_traits>
@@ -62,7 +63,7 @@ void SGMDensification<PointInT, PointOutT>::setStereoPair(const ImageCloud& left
   const Image<std::uint8_t> l = detail::grayImage(left);
   const Image<std::uint8_t> r = detail::grayImage(right);
   try {
-    pipeline_.setStereoPair(l.view(), r.view());
+    densifier_.setStereoPair(l.view(), r.view());
     pendingError_.clear();
   } catch (const std::exception& e) {
     pendingError_ = e.what();
@@ -70,39 +71,26 @@ void SGMDensification<PointInT, PointOutT>::setStereoPair(const ImageCloud& left
   }
   if (!explicitColor_) {
     const Image<Rgb8> color = detail::colorImage(left);
-    pipeline_.setColorImage(color.view());
+    densifier_.setColorImage(color.view());
   }
 }
 
 template <typename PointInT, typename PointOutT>
-void SGMDensification<PointInT, PointOutT>::setStereoPair(ImageView<const std::uint8_t> left,
-                                                         ImageView<const std::uint8_t> right) {
+void SGMDensification<PointInT, PointOutT>::setStereoPair(const GrayImageView& left, const GrayImageView& right) {
   try {
-    pipeline_.setStereoPair(left, right);
+    densifier_.setStereoPair(left, right);
     pendingError_.clear();
   } catch (const std::exception& e) {
     pendingError_ = e.what();
   }
-  // A gray pair colors through the pipeline's gray fallback unless a color image is set.
-  if (!explicitColor_) pipeline_.setColorImage(ImageView<const Rgb8>());
-}
-
-template <typename PointInT, typename PointOutT>
-void SGMDensification<PointInT, PointOutT>::setStereoPair(ImageView<const std::uint16_t> left,
-                                                         ImageView<const std::uint16_t> right) {
-  try {
-    pipeline_.setStereoPair(left, right);
-    pendingError_.clear();
-  } catch (const std::exception& e) {
-    pendingError_ = e.what();
-  }
-  if (!explicitColor_) pipeline_.setColorImage(ImageView<const Rgb8>());
+  // A gray pair colors through the densifier's gray fallback unless a color image is set.
+  if (!explicitColor_) densifier_.setColorImage(ImageView<const Rgb8>());
 }
 
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::clearStereoPair() {
-  pipeline_.setStereoPair(ImageView<const std::uint8_t>(), ImageView<const std::uint8_t>());
-  if (!explicitColor_) pipeline_.setColorImage(ImageView<const Rgb8>());
+  densifier_.clearStereoPair();
+  if (!explicitColor_) densifier_.setColorImage(ImageView<const Rgb8>());
   pendingError_.clear();
 }
 
@@ -113,18 +101,54 @@ void SGMDensification<PointInT, PointOutT>::setColorImage(const ImageCloud& imag
     return;
   }
   const Image<Rgb8> color = detail::colorImage(image);
-  pipeline_.setColorImage(color.view());
+  densifier_.setColorImage(color.view());
   explicitColor_ = true;
 }
 
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::fail(PointCloudOut& output, const std::string& message) {
   lastError_ = message;
+  projected_ = geometry::ProjectedLidar();  // not the previous frame's
   PCL_ERROR("[lidar_sgm::%s::filter] %s\n", getClassName().c_str(), message.c_str());
   output.clear();
   output.width = 0;
   output.height = 0;
   output.is_dense = true;
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::takeProjected() {
+  // The densifier saw points_, the indexed points in index order: its sourceIndex counts
+  // positions in *indices_, which users of setIndices() cannot trace back without the list.
+  projected_ = densifier_.projected();
+  for (std::size_t& source : projected_.sourceIndex) source = static_cast<std::size_t>((*indices_)[source]);
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::mapLidarPixels() {
+  if constexpr (pcl::traits::has_intensity_v<PointInT>) {
+    lidarPixel_.resize(projected_.width, projected_.height);
+    lidarPixel_.fill(-1);
+    // The nearest point (largest disparity) wins a shared pixel, as in sparseDisparity().
+    for (std::size_t i = 0; i < projected_.samples.size(); ++i) {
+      const LidarSample& s = projected_.samples[i];
+      std::int32_t& winner = lidarPixel_(s.x, s.y);
+      if (winner < 0 || s.disparity16 > projected_.samples[static_cast<std::size_t>(winner)].disparity16) {
+        winner = static_cast<std::int32_t>(i);
+      }
+    }
+  }
+}
+
+template <typename PointInT, typename PointOutT>
+float SGMDensification<PointInT, PointOutT>::intensityAt(int x, int y) const {
+  if constexpr (pcl::traits::has_intensity_v<PointInT>) {
+    const std::int32_t sample = lidarPixel_(x, y);
+    if (sample >= 0) return (*input_)[projected_.sourceIndex[static_cast<std::size_t>(sample)]].intensity;
+  }
+  Rgb8 c;
+  if (densifier_.colorAt(x, y, c)) return static_cast<float>(detail::grayFromRgb(c.r, c.g, c.b));
+  return std::numeric_limits<float>::quiet_NaN();
 }
 
 template <typename PointInT, typename PointOutT>
@@ -142,44 +166,51 @@ void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
     fail(output, "the input cloud or its indices are invalid");
     return;
   }
-  std::vector<Eigen::Vector3f> points;
-  points.reserve(indices_->size());
+  points_.clear();
+  points_.reserve(indices_->size());
   for (const auto index : *indices_) {
     const PointInT& p = (*input_)[index];
-    points.emplace_back(p.x, p.y, p.z);
+    points_.emplace_back(p.x, p.y, p.z);
   }
   const pcl::PCLHeader header = input_->header;  // output may alias nothing, but copy first anyway
-  geometry::DenseCloud dense;
+  const geometry::DenseCloud* dense = nullptr;
   try {
-    dense = pipeline_.run(points);
+    dense = &densifier_.run(points_);
   } catch (const std::exception& e) {
     deinitCompute();
     fail(output, e.what());
     return;
   }
+  takeProjected();
+  constexpr bool kHasIntensity = pcl::traits::has_intensity_v<PointOutT>;
+  if constexpr (kHasIntensity) mapLidarPixels();
 
   output.header = header;
-  if (pipeline_.reprojectionOptions().frame == geometry::OutputFrame::Camera) output.header.frame_id = cameraFrameId_;
-  output.resize(dense.size());
-  output.width = static_cast<std::uint32_t>(dense.width);
-  output.height = static_cast<std::uint32_t>(dense.height);
-  output.is_dense = dense.isDense;
-  for (std::size_t i = 0; i < dense.size(); ++i) {
+  if (densifier_.reprojectionOptions().frame == geometry::OutputFrame::Camera) output.header.frame_id = cameraFrameId_;
+  output.resize(dense->size());
+  output.width = static_cast<std::uint32_t>(dense->width);
+  output.height = static_cast<std::uint32_t>(dense->height);
+  output.is_dense = dense->isDense;
+  for (std::size_t i = 0; i < dense->size(); ++i) {
     PointOutT& q = output[i];
-    q.x = dense.points[i].x();
-    q.y = dense.points[i].y();
-    q.z = dense.points[i].z();
+    const geometry::PixelIndex pixel = dense->pixels[i];
+    q.x = dense->points[i].x();
+    q.y = dense->points[i].y();
+    q.z = dense->points[i].z();
     if constexpr (pcl::traits::has_color_v<PointOutT>) {
       Rgb8 c;
-      if (pipeline_.colorAt(dense.pixels[i].x, dense.pixels[i].y, c)) {
+      if (densifier_.colorAt(pixel.x, pixel.y, c)) {
         q.r = c.r;
         q.g = c.g;
         q.b = c.b;
       }
     }
+    if constexpr (kHasIntensity) q.intensity = intensityAt(pixel.x, pixel.y);
   }
   deinitCompute();
 }
 
 }  // namespace lidar_sgm
 
+/// For PCL_INSTANTIATE_PRODUCT(SGMDensification, (inputs)(outputs)), as PCL's own impl files.
+#define PCL_INSTANTIATE_SGMDensification(In, Out) template class lidar_sgm::SGMDensification<In, Out>;
