@@ -52,12 +52,12 @@ void printHelp(const char* program) {
       program, kDefaults.seed, kDefaults.beams, kDefaults.baseline, kDefaults.width, kDefaults.height);
 }
 
-cv::Mat toMat(const lidar_sgm::Image<synth::Rgb8>& image) {
+cv::Mat toMat(const lidar_sgm::Image<lidar_sgm::Rgb8>& image) {
   cv::Mat bgr(image.height(), image.width(), CV_8UC3);
   for (int y = 0; y < image.height(); ++y) {
     auto* row = bgr.ptr<cv::Vec3b>(y);
     for (int x = 0; x < image.width(); ++x) {
-      const synth::Rgb8& p = image(x, y);
+      const lidar_sgm::Rgb8& p = image(x, y);
       row[x] = cv::Vec3b(p.b, p.g, p.r);
     }
   }

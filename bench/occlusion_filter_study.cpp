@@ -11,8 +11,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -27,7 +25,6 @@
 #include "lidar_sgm/synth/encoding.hpp"
 #include "lidar_sgm/synth/frame.hpp"
 
-namespace fs = std::filesystem;
 using namespace lidar_sgm;
 
 namespace {
@@ -91,14 +88,13 @@ void synthetic(int seeds, std::size_t settingCount) {
   auto all = settings();
   all.resize(std::min(all.size(), settingCount));
   std::vector<Totals> totals(all.size());
-  const std::string calibPath = (fs::temp_directory_path() / "occlusion_study_calib.txt").string();
   for (int seed = 100; seed < 100 + seeds; ++seed) {
     synth::FrameOptions options;
     options.seed = static_cast<std::uint32_t>(seed);
     const synth::Frame frame = synth::renderFrame(options);
-    // The calibration goes through the same text file and reader a user would use.
-    std::ofstream(calibPath) << synth::kittiCalibrationText(frame.rig, false);
-    const geometry::StereoCalibration calib = io::readKittiCalibration(calibPath, frame.rig.width, frame.rig.height);
+    // The calibration goes through the same KITTI text and parser a user's calib file would.
+    const geometry::StereoCalibration calib = io::readKittiCalibrationFromString(
+        synth::kittiCalibrationText(frame.rig, false), "synthetic calib", frame.rig.width, frame.rig.height);
     std::vector<Eigen::Vector3f> points;
     for (const auto& p : frame.lidar) points.emplace_back(p.x, p.y, p.z);
     const Image<std::uint8_t> left = synth::toGray(frame.left);
@@ -141,7 +137,6 @@ void synthetic(int seeds, std::size_t settingCount) {
     }
     std::fprintf(stderr, "seed %d done\n", seed);
   }
-  fs::remove(calibPath);
   std::printf("\nSynthetic frames, seeds 100-%d, 1242x375, 64 beams, clear; means over frames; scored on all GT pixels\n\n",
               99 + seeds);
   std::printf("| filter (half window x, y; gap) | points kept | wrong (> 1 px) kept | wrong dropped | right dropped | "

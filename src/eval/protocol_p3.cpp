@@ -28,11 +28,11 @@ cv::Mat toMat(const Image<std::uint8_t>& gray) {
   return cv::Mat(gray.height(), gray.width(), CV_8UC1, const_cast<std::uint8_t*>(gray.data())).clone();
 }
 
-cv::Mat toBgr(const Image<synth::Rgb8>& color) {
+cv::Mat toBgr(const Image<Rgb8>& color) {
   cv::Mat bgr(color.height(), color.width(), CV_8UC3);
   for (int y = 0; y < color.height(); ++y) {
     for (int x = 0; x < color.width(); ++x) {
-      const synth::Rgb8& c = color(x, y);
+      const Rgb8& c = color(x, y);
       bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(c.b, c.g, c.r);
     }
   }

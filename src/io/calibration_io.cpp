@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <istream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -62,34 +63,42 @@ double parseNumber(const Field& field, const std::string& token) {
   return value;
 }
 
-[[noreturn]] void cannotRead(const std::string& path, const std::string& reason) {
-  throw std::runtime_error("cannot read calibration '" + path + "': " + reason);
+[[noreturn]] void cannotRead(const std::string& source, const std::string& reason) {
+  throw std::runtime_error("cannot read calibration '" + source + "': " + reason);
 }
 
-void requireRegularFile(const std::string& path) {
+std::ifstream openFile(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) cannotRead(path, "no such file");
+  std::ifstream in(path, std::ios::binary);  // binary: the text parsers see exactly the file's bytes
+  if (!in) cannotRead(path, "cannot open the file");
+  return in;
 }
 
-/// A KITTI calibration text file: "KEY: values" lines. Values are kept as text and only the
-/// keys asked for are parsed, so unknown keys with non-numeric values (calib_time) do no harm.
-class KittiTextFile {
+std::string readAll(std::istream& in, const std::string& source) {
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) cannotRead(source, "read error");
+  return text.str();
+}
+
+/// A KITTI calibration text: "KEY: values" lines. Values are kept as text and only the keys
+/// asked for are parsed, so unknown keys with non-numeric values (calib_time) do no harm.
+/// `source` names the text in every message: a path, or the caller's label for memory input.
+class KittiText {
  public:
-  explicit KittiTextFile(const std::string& path) : path_(path) {
-    requireRegularFile(path);
-    std::ifstream in(path);
-    if (!in) cannotRead(path, "cannot open the file");
+  KittiText(std::istream& in, const std::string& source) : source_(source) {
     std::string text;
     for (int number = 1; std::getline(in, text); ++number) addLine(number, text);
-    if (in.bad()) cannotRead(path, "read error");
+    if (in.bad()) cannotRead(source, "read error");
   }
 
   /// The numbers of `key`, exactly `count` of them.
   Field numbers(const std::string& key, std::size_t count) const {
     const auto found = lines_.find(key);
-    if (found == lines_.end()) throw std::runtime_error(path_ + ": missing key '" + key + "'");
+    if (found == lines_.end()) throw std::runtime_error(source_ + ": missing key '" + key + "'");
     const std::vector<Line>& occurrences = found->second;
-    Field field{path_, key, occurrences.front().number, {}};
+    Field field{source_, key, occurrences.front().number, {}};
     // Two values for one key: which one the author meant is a guess we do not make.
     if (occurrences.size() > 1) field.fail("appears again on line " + std::to_string(occurrences[1].number));
     std::istringstream tokens(occurrences.front().text);
@@ -111,12 +120,12 @@ class KittiTextFile {
     if (trim(text).empty()) return;
     const std::size_t colon = text.find(':');
     if (colon == std::string::npos) {
-      throw std::runtime_error(path_ + ":" + std::to_string(number) + ": expected 'KEY: values', got '" + text + "'");
+      throw std::runtime_error(source_ + ":" + std::to_string(number) + ": expected 'KEY: values', got '" + text + "'");
     }
     lines_[trim(text.substr(0, colon))].push_back({number, text.substr(colon + 1)});
   }
 
-  std::string path_;
+  std::string source_;
   std::map<std::string, std::vector<Line>> lines_;
 };
 
@@ -193,9 +202,9 @@ StereoCalibration composeKitti(const Field& p2Field, const Field& p3Field, const
   return calibration;
 }
 
-/// validate() with the file named; with the size unknown (0x0) everything but the size is
+/// validate() with the source named; with the size unknown (0x0) everything but the size is
 /// still checked, on a copy given a placeholder size.
-void validateFromFile(const StereoCalibration& calibration, const std::string& source) {
+void validateFromSource(const StereoCalibration& calibration, const std::string& source) {
   StereoCalibration checked = calibration;
   if (checked.width == 0 && checked.height == 0) checked.width = checked.height = 1;
   try {
@@ -215,32 +224,32 @@ int imageSide(const Field& field, double value) {
 
 // --- YAML --------------------------------------------------------------------------------
 
-cv::FileNode requireNode(const cv::FileStorage& storage, const std::string& path, const std::string& key) {
+cv::FileNode requireNode(const cv::FileStorage& storage, const std::string& source, const std::string& key) {
   const cv::FileNode node = storage[key];
-  if (node.empty() || node.isNone()) throw std::runtime_error(path + ": missing key '" + key + "'");
+  if (node.empty() || node.isNone()) throw std::runtime_error(source + ": missing key '" + key + "'");
   return node;
 }
 
-int readYamlInt(const cv::FileStorage& storage, const std::string& path, const std::string& key) {
-  const cv::FileNode node = requireNode(storage, path, key);
-  if (!node.isInt()) throw std::runtime_error(path + ": key '" + key + "': expected an integer");
+int readYamlInt(const cv::FileStorage& storage, const std::string& source, const std::string& key) {
+  const cv::FileNode node = requireNode(storage, source, key);
+  if (!node.isInt()) throw std::runtime_error(source + ": key '" + key + "': expected an integer");
   return static_cast<int>(node);
 }
 
-double readYamlReal(const cv::FileStorage& storage, const std::string& path, const std::string& key) {
-  const cv::FileNode node = requireNode(storage, path, key);
-  if (!node.isReal() && !node.isInt()) throw std::runtime_error(path + ": key '" + key + "': expected a number");
+double readYamlReal(const cv::FileStorage& storage, const std::string& source, const std::string& key) {
+  const cv::FileNode node = requireNode(storage, source, key);
+  if (!node.isReal() && !node.isInt()) throw std::runtime_error(source + ": key '" + key + "': expected a number");
   return static_cast<double>(node);
 }
 
 template <int Rows, int Cols>
-Eigen::Matrix<double, Rows, Cols> readYamlMatrix(const cv::FileStorage& storage, const std::string& path,
+Eigen::Matrix<double, Rows, Cols> readYamlMatrix(const cv::FileStorage& storage, const std::string& source,
                                                  const std::string& key) {
-  const cv::FileNode node = requireNode(storage, path, key);
+  const cv::FileNode node = requireNode(storage, source, key);
   cv::Mat m;
   if (node.isMap()) node >> m;  // an opencv-matrix is a map (rows, cols, dt, data)
   if (m.empty() || m.rows != Rows || m.cols != Cols || m.channels() != 1) {
-    throw std::runtime_error(path + ": key '" + key + "': expected a " + std::to_string(Rows) + "x" +
+    throw std::runtime_error(source + ": key '" + key + "': expected a " + std::to_string(Rows) + "x" +
                              std::to_string(Cols) + " matrix");
   }
   m.convertTo(m, CV_64F);
@@ -278,31 +287,43 @@ bool hasYamlExtension(const fs::path& path) {
 
 }  // namespace
 
-StereoCalibration readKittiCalibration(const std::string& path, int width, int height) {
-  const KittiTextFile file(path);
-  const Field p2 = file.numbers("P2", 12);
-  const Field p3 = file.numbers("P3", 12);
-  const Field r0 = file.numbers("R0_rect", 9);
-  const Field tr = file.numbers("Tr_velo_to_cam", 12);
+StereoCalibration readKittiCalibration(std::istream& in, const std::string& source, int width, int height) {
+  const KittiText text(in, source);
+  const Field p2 = text.numbers("P2", 12);
+  const Field p3 = text.numbers("P3", 12);
+  const Field r0 = text.numbers("R0_rect", 9);
+  const Field tr = text.numbers("Tr_velo_to_cam", 12);
   const Matrix34 veloToCam = rowMajor3x4(tr);
   requireRotation(tr, veloToCam.leftCols<3>());
 
   StereoCalibration calibration = composeKitti(p2, p3, r0, rigid(veloToCam.leftCols<3>(), veloToCam.col(3)));
   calibration.width = width;
   calibration.height = height;
-  validateFromFile(calibration, "'" + path + "'");
+  validateFromSource(calibration, "'" + source + "'");
   return calibration;
 }
 
-StereoCalibration readKittiRawCalibration(const std::string& camToCamPath, const std::string& veloToCamPath) {
-  const KittiTextFile camToCam(camToCamPath);
-  const KittiTextFile veloToCamFile(veloToCamPath);
-  const Field p2 = camToCam.numbers("P_rect_02", 12);
-  const Field p3 = camToCam.numbers("P_rect_03", 12);
-  const Field r0 = camToCam.numbers("R_rect_00", 9);  // rectifies camera 0, the reference of P_rect_0x
-  const Field size = camToCam.numbers("S_rect_02", 2);
-  const Field rotation = veloToCamFile.numbers("R", 9);
-  const Field translation = veloToCamFile.numbers("T", 3);
+StereoCalibration readKittiCalibrationFromString(const std::string& text, const std::string& source, int width,
+                                                 int height) {
+  std::istringstream in(text);
+  return readKittiCalibration(in, source, width, height);
+}
+
+StereoCalibration readKittiCalibration(const std::string& path, int width, int height) {
+  std::ifstream in = openFile(path);
+  return readKittiCalibration(in, path, width, height);
+}
+
+StereoCalibration readKittiRawCalibration(std::istream& camToCam, const std::string& camToCamSource,
+                                          std::istream& veloToCam, const std::string& veloToCamSource) {
+  const KittiText camToCamText(camToCam, camToCamSource);
+  const KittiText veloToCamText(veloToCam, veloToCamSource);
+  const Field p2 = camToCamText.numbers("P_rect_02", 12);
+  const Field p3 = camToCamText.numbers("P_rect_03", 12);
+  const Field r0 = camToCamText.numbers("R_rect_00", 9);  // rectifies camera 0, the reference of P_rect_0x
+  const Field size = camToCamText.numbers("S_rect_02", 2);
+  const Field rotation = veloToCamText.numbers("R", 9);
+  const Field translation = veloToCamText.numbers("T", 3);
   const Eigen::Matrix3d R = rowMajor3x3(rotation);
   requireRotation(rotation, R);
   const Eigen::Vector3d t(translation.values[0], translation.values[1], translation.values[2]);
@@ -310,31 +331,59 @@ StereoCalibration readKittiRawCalibration(const std::string& camToCamPath, const
   StereoCalibration calibration = composeKitti(p2, p3, r0, rigid(R, t));
   calibration.width = imageSide(size, size.values[0]);
   calibration.height = imageSide(size, size.values[1]);
-  validateFromFile(calibration, "from '" + camToCamPath + "' and '" + veloToCamPath + "'");
+  validateFromSource(calibration, "from '" + camToCamSource + "' and '" + veloToCamSource + "'");
   return calibration;
 }
 
-StereoCalibration readCalibrationYaml(const std::string& path) {
-  requireRegularFile(path);
+StereoCalibration readKittiRawCalibrationFromString(const std::string& camToCamText,
+                                                    const std::string& veloToCamText,
+                                                    const std::string& camToCamSource,
+                                                    const std::string& veloToCamSource) {
+  std::istringstream camToCam(camToCamText);
+  std::istringstream veloToCam(veloToCamText);
+  return readKittiRawCalibration(camToCam, camToCamSource, veloToCam, veloToCamSource);
+}
+
+StereoCalibration readKittiRawCalibration(const std::string& camToCamPath, const std::string& veloToCamPath) {
+  std::ifstream camToCam = openFile(camToCamPath);
+  std::ifstream veloToCam = openFile(veloToCamPath);
+  return readKittiRawCalibration(camToCam, camToCamPath, veloToCam, veloToCamPath);
+}
+
+StereoCalibration readCalibrationYamlFromString(const std::string& text, const std::string& source) {
+  // FileStorage reads memory as a C string: an embedded NUL would silently cut the text short.
+  if (text.find('\0') != std::string::npos) cannotRead(source, "the YAML text contains a NUL byte");
+  if (trim(text).empty()) cannotRead(source, "the YAML text is empty");
   cv::FileStorage storage;
   try {
-    if (!storage.open(path, cv::FileStorage::READ)) cannotRead(path, "not a readable YAML file");
+    if (!storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY)) {
+      cannotRead(source, "not readable YAML");
+    }
   } catch (const cv::Exception& e) {
     // The parser's message carries the line of the syntax error.
-    cannotRead(path, "YAML syntax error: " + trim(e.what()));
+    cannotRead(source, "YAML syntax error: " + trim(e.what()));
   }
   StereoCalibration calibration;
   try {
-    calibration.width = readYamlInt(storage, path, "width");
-    calibration.height = readYamlInt(storage, path, "height");
-    calibration.K = readYamlMatrix<3, 3>(storage, path, "K");
-    calibration.baseline = readYamlReal(storage, path, "baseline");
-    calibration.T_cam_lidar.matrix() = readYamlMatrix<4, 4>(storage, path, "T_cam_lidar");
+    calibration.width = readYamlInt(storage, source, "width");
+    calibration.height = readYamlInt(storage, source, "height");
+    calibration.K = readYamlMatrix<3, 3>(storage, source, "K");
+    calibration.baseline = readYamlReal(storage, source, "baseline");
+    calibration.T_cam_lidar.matrix() = readYamlMatrix<4, 4>(storage, source, "T_cam_lidar");
   } catch (const cv::Exception& e) {
-    cannotRead(path, e.what());
+    cannotRead(source, e.what());
   }
-  validateFromFile(calibration, "'" + path + "'");
+  validateFromSource(calibration, "'" + source + "'");
   return calibration;
+}
+
+StereoCalibration readCalibrationYaml(std::istream& in, const std::string& source) {
+  return readCalibrationYamlFromString(readAll(in, source), source);
+}
+
+StereoCalibration readCalibrationYaml(const std::string& path) {
+  std::ifstream in = openFile(path);
+  return readCalibrationYamlFromString(readAll(in, path), path);
 }
 
 void writeCalibrationYaml(const std::string& path, const StereoCalibration& calibration) {

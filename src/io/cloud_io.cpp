@@ -8,6 +8,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <istream>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -18,6 +19,7 @@
 
 #include "atomic_file.hpp"
 #include "binary_pcd_writer.hpp"
+#include "memory_stream.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -252,55 +254,132 @@ int callPclReader(const std::string& path, Call call) {
 
 // PCL's ASCII reader skips a line with the wrong number of values (a file cut inside its last
 // line, say) with a warning, leaving a zero point, and still reports success. So each line of an
-// ASCII body is counted here.
-void checkAsciiBody(const std::string& path, const pcl::PCLPointCloud2& blob, unsigned int dataStart) {
+// ASCII body (`body`, positioned at its start) is counted here.
+void checkAsciiBody(const std::string& source, const pcl::PCLPointCloud2& blob, std::istream& body) {
   std::size_t valuesPerPoint = 0;
   for (const pcl::PCLPointField& field : blob.fields) valuesPerPoint += std::max<std::size_t>(field.count, 1);
   const std::uint64_t points = static_cast<std::uint64_t>(blob.width) * blob.height;
-  std::ifstream in(path, std::ios::binary);
-  in.seekg(static_cast<std::streamoff>(dataStart));
   std::string line;
   std::uint64_t point = 0;
-  while (point < points && std::getline(in, line)) {
+  while (point < points && std::getline(body, line)) {
     std::istringstream values(line);
     std::size_t count = 0;
     for (std::string value; values >> value;) ++count;
     if (count == 0) continue;  // PCL skips blank lines too
     ++point;
     if (count != valuesPerPoint) {
-      failRead(path, "ASCII point " + std::to_string(point) + " has " + std::to_string(count) + " values, expected " +
-                         std::to_string(valuesPerPoint) + ": truncated or malformed?");
+      failRead(source, "ASCII point " + std::to_string(point) + " has " + std::to_string(count) +
+                           " values, expected " + std::to_string(valuesPerPoint) + ": truncated or malformed?");
     }
   }
   if (point < points) {
-    failRead(path, "the header declares " + std::to_string(points) + " points but the data holds " +
-                       std::to_string(point) + ": truncated?");
+    failRead(source, "the header declares " + std::to_string(points) + " points but the data holds " +
+                         std::to_string(point) + ": truncated?");
   }
 }
 
-void readPcdBlob(const std::string& path, pcl::PCLPointCloud2& blob, Eigen::Vector4f& origin,
-                 Eigen::Quaternionf& orientation) {
+[[noreturn]] void failTruncatedBinary(const std::string& source, const pcl::PCLPointCloud2& blob,
+                                      std::uint64_t available) {
+  failRead(source, "the data holds " + std::to_string(available) + " bytes but the header declares " +
+                       std::to_string(blob.width) + " x " + std::to_string(blob.height) + " points of " +
+                       std::to_string(blob.point_step) + " bytes: truncated?");
+}
+
+// readBodyBinary() reads through a bare pointer; PCL's file reader checks the file's size first
+// ("Corrupted PCD file"), so the same check is made here against the buffer's size.
+void requireBinaryBody(const std::string& source, const pcl::PCLPointCloud2& blob, const unsigned char* data,
+                       std::size_t size, unsigned int dataStart, bool compressed) {
+  const std::uint64_t available = size > dataStart ? size - dataStart : 0;
+  if (!compressed) {
+    if (blob.data.size() > available) failTruncatedBinary(source, blob, available);
+    return;
+  }
+  // binary_compressed: uint32 compressed size, uint32 uncompressed size, then the LZF block.
+  constexpr std::uint64_t kSizesBytes = 2 * sizeof(std::uint32_t);
+  if (available < kSizesBytes) failTruncatedBinary(source, blob, available);
+  std::uint32_t compressedSize = 0;
+  std::memcpy(&compressedSize, data + dataStart, sizeof compressedSize);  // host order, as PCL writes it
+  if (kSizesBytes + compressedSize > available) {
+    failRead(source, "the compressed block declares " + std::to_string(compressedSize) + " bytes but " +
+                         std::to_string(available - kSizesBytes) + " follow: truncated?");
+  }
+}
+
+/// The one PCD parser, for files and buffers: PCL's stream header reader and its body readers.
+pcl::PCLPointCloud2 readPcdBlob(const std::string& source, const unsigned char* data, std::size_t size,
+                                Eigen::Vector4f& origin, Eigen::Quaternionf& orientation) {
+  detail::MemoryStream stream(reinterpret_cast<const char*>(data), size);
   pcl::PCDReader reader;
+  pcl::PCLPointCloud2 blob;
   int version = 0;
   int dataType = 0;
   unsigned int dataStart = 0;
   const int headerStatus = callPclReader(
-      path, [&] { return reader.readHeader(path, blob, origin, orientation, version, dataType, dataStart); });
-  if (headerStatus < 0) failRead(path, "not a valid PCD file (its header cannot be parsed)");
-  // PCL 1.13 accepts an empty or non-PCD file as a header without fields, and its read() then
-  // crashes (PCL issue #5854); such a file is refused here, before read().
-  if (blob.fields.empty()) failRead(path, "not a PCD file (no FIELDS in its header)");
-  const int status = callPclReader(path, [&] { return reader.read(path, blob, origin, orientation, version); });
-  if (status < 0) failRead(path, "the PCD data cannot be read: truncated or corrupted?");
-  if (dataType == 0) checkAsciiBody(path, blob, dataStart);
+      source, [&] { return reader.readHeader(stream, blob, origin, orientation, version, dataType, dataStart); });
+  if (headerStatus < 0) failRead(source, "not a valid PCD file (its header cannot be parsed)");
+  // PCL 1.13 accepts an empty or non-PCD file as a header without fields, and reading its body
+  // then crashes (PCL issue #5854); such a file is refused here, first.
+  if (blob.fields.empty()) failRead(source, "not a PCD file (no FIELDS in its header)");
+  int status = 0;
+  if (dataType == 0) {
+    stream.clear();
+    stream.seekg(static_cast<std::streamoff>(dataStart));
+    status = callPclReader(source, [&] { return reader.readBodyASCII(stream, blob, version); });
+    if (status >= 0) {
+      stream.clear();
+      stream.seekg(static_cast<std::streamoff>(dataStart));
+      checkAsciiBody(source, blob, stream);
+    }
+  } else {
+    const bool compressed = dataType == 2;
+    requireBinaryBody(source, blob, data, size, dataStart, compressed);
+    status = callPclReader(source, [&] { return reader.readBodyBinary(data, blob, version, compressed, dataStart); });
+  }
+  if (status < 0) failRead(source, "the PCD data cannot be read: truncated or corrupted?");
+  return blob;
 }
 
+pcl::PointCloud<pcl::PointXYZI> pcdFromBytes(const std::string& source, const unsigned char* data, std::size_t size) {
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  const pcl::PCLPointCloud2 blob = readPcdBlob(source, data, size, origin, orientation);
+  pcl::PointCloud<pcl::PointXYZI> cloud = toXyzi(source, blob);
+  cloud.sensor_origin_ = origin;
+  cloud.sensor_orientation_ = orientation;
+  return cloud;
+}
+
+// PLY stays file-only: PCL 1.13's PLYReader (and its ply_parser) parse a file by name, with no
+// stream or buffer entry point.
 void readPlyBlob(const std::string& path, pcl::PCLPointCloud2& blob, Eigen::Vector4f& origin,
                  Eigen::Quaternionf& orientation) {
   pcl::PLYReader reader;
   int version = 0;
   const int status = callPclReader(path, [&] { return reader.read(path, blob, origin, orientation, version); });
   if (status < 0) failRead(path, "not a valid PLY file, or truncated");
+}
+
+/// The one KITTI .bin decoder, for files and buffers.
+pcl::PointCloud<pcl::PointXYZI> kittiBinFromBytes(const std::string& source, const unsigned char* bytes,
+                                                  std::uint64_t size) {
+  if (size % kKittiPointBytes != 0) {
+    failRead(source, "size " + std::to_string(size) + " bytes is not a multiple of " +
+                         std::to_string(kKittiPointBytes) + " (x, y, z, reflectance float32): truncated?");
+  }
+  pcl::PointCloud<pcl::PointXYZI> cloud;
+  cloud.resize(static_cast<std::size_t>(size / kKittiPointBytes));
+  cloud.width = static_cast<std::uint32_t>(cloud.size());  // resize(0) would leave height 0
+  cloud.height = 1;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const unsigned char* record = bytes + i * kKittiPointBytes;
+    pcl::PointXYZI& p = cloud.points[i];
+    p.x = littleEndianFloat(record);
+    p.y = littleEndianFloat(record + 4);
+    p.z = littleEndianFloat(record + 8);
+    p.intensity = littleEndianFloat(record + 12);
+  }
+  setDenseness(cloud);
+  return cloud;
 }
 
 // ---- writing ------------------------------------------------------------------------------
@@ -375,25 +454,20 @@ pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path) {
   std::error_code ec;
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) failRead(path, ec.message());
-  if (size % kKittiPointBytes != 0) {
-    failRead(path, "size " + std::to_string(size) + " bytes is not a multiple of " +
-                       std::to_string(kKittiPointBytes) + " (x, y, z, reflectance float32): truncated?");
-  }
   const std::vector<unsigned char> bytes = readAllBytes(path, size);
-  pcl::PointCloud<pcl::PointXYZI> cloud;
-  cloud.resize(static_cast<std::size_t>(size / kKittiPointBytes));
-  cloud.width = static_cast<std::uint32_t>(cloud.size());  // resize(0) would leave height 0
-  cloud.height = 1;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const unsigned char* record = bytes.data() + i * kKittiPointBytes;
-    pcl::PointXYZI& p = cloud.points[i];
-    p.x = littleEndianFloat(record);
-    p.y = littleEndianFloat(record + 4);
-    p.z = littleEndianFloat(record + 8);
-    p.intensity = littleEndianFloat(record + 12);
-  }
-  setDenseness(cloud);
-  return cloud;
+  return kittiBinFromBytes(path, bytes.data(), size);
+}
+
+pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::size_t size,
+                                                       const std::string& source) {
+  if (data == nullptr && size != 0) failRead(source, "null data pointer for " + std::to_string(size) + " bytes");
+  return kittiBinFromBytes(source, static_cast<const unsigned char*>(data), size);
+}
+
+pcl::PointCloud<pcl::PointXYZI> readPcdFromBuffer(const void* data, std::size_t size, const std::string& source) {
+  if (size == 0) failRead(source, "the buffer is empty");
+  if (data == nullptr) failRead(source, "null data pointer for " + std::to_string(size) + " bytes");
+  return pcdFromBytes(source, static_cast<const unsigned char*>(data), size);
 }
 
 pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path) {
@@ -401,16 +475,17 @@ pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path) {
   const std::string extension = lowerExtension(path);
   if (extension != ".pcd" && extension != ".ply") failRead(path, "expected a .pcd or .ply file");
   std::error_code ec;
-  if (fs::file_size(path, ec) == 0 && !ec) failRead(path, "the file is empty");
-
+  const std::uint64_t size = fs::file_size(path, ec);
+  if (ec) failRead(path, ec.message());
+  if (size == 0) failRead(path, "the file is empty");
+  if (extension == ".pcd") {
+    const std::vector<unsigned char> bytes = readAllBytes(path, size);
+    return pcdFromBytes(path, bytes.data(), bytes.size());
+  }
   pcl::PCLPointCloud2 blob;
   Eigen::Vector4f origin = Eigen::Vector4f::Zero();
   Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-  if (extension == ".pcd") {
-    readPcdBlob(path, blob, origin, orientation);
-  } else {
-    readPlyBlob(path, blob, origin, orientation);
-  }
+  readPlyBlob(path, blob, origin, orientation);
   pcl::PointCloud<pcl::PointXYZI> cloud = toXyzi(path, blob);
   cloud.sensor_origin_ = origin;
   cloud.sensor_orientation_ = orientation;

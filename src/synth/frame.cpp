@@ -62,11 +62,11 @@ namespace {
 // The left-image pixel (u, v) and camera depth z of a LiDAR point; false when behind the camera
 // or outside the image.
 bool projectToLeft(const LidarPoint& p, const StereoRig& rig, double& u, double& v, double& z) {
-  const Vec3 c = rig.lidarToCamera({p.x, p.y, p.z});
-  if (c.z <= 0.1) return false;
-  u = rig.focal * c.x / c.z + rig.cx;
-  v = rig.focal * c.y / c.z + rig.cy;
-  z = c.z;
+  const Eigen::Vector3d c = rig.lidarToCamera({p.x, p.y, p.z});
+  if (c.z() <= 0.1) return false;
+  u = rig.focal * c.x() / c.z() + rig.cx;
+  v = rig.focal * c.y() / c.z() + rig.cy;
+  z = c.z();
   return u > -0.5 && u < rig.width - 0.5 && v > -0.5 && v < rig.height - 0.5;
 }
 

@@ -43,7 +43,7 @@ LidarOptions LidarOptions::forBeams(int beams) {
   throw std::invalid_argument("beams " + std::to_string(beams) + " must be 64 or 128");
 }
 
-std::vector<LidarPoint> scanLidar(const Scene& scene, const Vec3& position, const LidarOptions& options,
+std::vector<LidarPoint> scanLidar(const Scene& scene, const Eigen::Vector3d& position, const LidarOptions& options,
                                   std::uint32_t seed) {
   std::mt19937 rng(seed);
   const int columns = static_cast<int>(std::lround(2.0 * options.azimuthHalfRangeDeg / options.azimuthStepDeg)) + 1;
@@ -58,7 +58,7 @@ std::vector<LidarPoint> scanLidar(const Scene& scene, const Vec3& position, cons
   for (int c = 0; c < columns; ++c) {
     const double azimuth = (options.azimuthHalfRangeDeg - c * options.azimuthStepDeg) * kDegree;
     for (double elevation : elevations) {
-      const Vec3 direction{std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+      const Eigen::Vector3d direction{std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
                            std::sin(elevation)};
       Hit hit;
       if (!scene.intersect({position, direction}, options.minRange, options.maxRange, hit)) continue;
@@ -70,9 +70,9 @@ std::vector<LidarPoint> scanLidar(const Scene& scene, const Vec3& position, cons
       if (drop < dropoutProbability(m, cosine)) continue;
       const double range = hit.t + noise;
       LidarPoint p;
-      p.x = static_cast<float>(direction.x * range);
-      p.y = static_cast<float>(direction.y * range);
-      p.z = static_cast<float>(direction.z * range);
+      p.x = static_cast<float>(direction.x() * range);
+      p.y = static_cast<float>(direction.y() * range);
+      p.z = static_cast<float>(direction.z() * range);
       p.intensity = static_cast<float>(std::clamp(m.reflectivity * (0.3 + 0.7 * cosine), 0.0, 1.0));
       points.push_back(p);
     }

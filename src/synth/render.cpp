@@ -38,7 +38,7 @@ RenderedView renderView(const Scene& scene, const PinholeCamera& camera, Weather
       Rgb color;
       if (scene.intersect(ray, 1e-3, 1e9, hit)) {
         // Size of the pixel on the surface: distance / focal, stretched by the grazing angle.
-        const Vec3 unit = normalized(ray.direction);
+        const Eigen::Vector3d unit = normalized(ray.direction);
         const double cosine = std::max(0.15, std::abs(dot(unit, hit.normal)));
         const double footprint = hit.t * norm(ray.direction) / camera.focal / cosine;
         color = shade(scene, ray, hit, weather, footprint);

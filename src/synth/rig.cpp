@@ -4,12 +4,14 @@
 
 namespace lidar_sgm {
 namespace synth {
+
+using Eigen::Vector3d;
 namespace {
 
 constexpr double kKittiWidth = 1242.0;
 constexpr double kKittiHeight = 375.0;
 
-PinholeCamera cameraAt(const StereoRig& rig, const Vec3& position) {
+PinholeCamera cameraAt(const StereoRig& rig, const Vector3d& position) {
   PinholeCamera c;
   c.position = position;
   c.width = rig.width;
@@ -45,12 +47,12 @@ StereoRig StereoRig::kittiLike(int width, int height, double baseline) {
 }
 
 PinholeCamera StereoRig::left() const { return cameraAt(*this, leftPosition()); }
-PinholeCamera StereoRig::right() const { return cameraAt(*this, leftPosition() + Vec3{0.0, -baseline, 0.0}); }
-PinholeCamera StereoRig::up() const { return cameraAt(*this, leftPosition() + Vec3{0.0, 0.0, thirdCameraOffset}); }
+PinholeCamera StereoRig::right() const { return cameraAt(*this, leftPosition() + Vector3d{0.0, -baseline, 0.0}); }
+PinholeCamera StereoRig::up() const { return cameraAt(*this, leftPosition() + Vector3d{0.0, 0.0, thirdCameraOffset}); }
 
-Vec3 StereoRig::lidarToCamera(const Vec3& p) const {
-  const Vec3 world = p + lidarOffset;  // relative to the left camera, world axes
-  return {-world.y, -world.z, world.x};
+Vector3d StereoRig::lidarToCamera(const Vector3d& p) const {
+  const Vector3d world = p + lidarOffset;  // relative to the left camera, world axes
+  return {-world.y(), -world.z(), world.x()};
 }
 
 std::string kittiCalibrationText(const StereoRig& rig, bool withThirdCamera) {
@@ -60,8 +62,8 @@ std::string kittiCalibrationText(const StereoRig& rig, bool withThirdCamera) {
   // The third camera sits at y = -offset in the left camera's axes: P = K [I | -C].
   const double up[12] = {f, 0, rig.cx, 0, 0, f, rig.cy, f * rig.thirdCameraOffset, 0, 0, 1, 0};
   const double rect[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
-  const Vec3 t = rig.lidarToCamera({0, 0, 0});
-  const double velo[12] = {0, -1, 0, t.x, 0, 0, -1, t.y, 1, 0, 0, t.z};
+  const Vector3d t = rig.lidarToCamera({0, 0, 0});
+  const double velo[12] = {0, -1, 0, t.x(), 0, 0, -1, t.y(), 1, 0, 0, t.z()};
   const double imu[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   std::string text = matrixLine("P0:", left) + matrixLine("P1:", right) + matrixLine("P2:", left) +
                      matrixLine("P3:", right);

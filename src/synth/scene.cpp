@@ -8,19 +8,21 @@
 
 namespace lidar_sgm {
 namespace synth {
+
+using Eigen::Vector3d;
 namespace {
 
 constexpr int kLeafSize = 2;
 
 // Slab test: whether the ray enters [lo, hi] within (tMin, tMax); tEnter is where.
-bool hitsBounds(const Vec3& lo, const Vec3& hi, const Ray& ray, const Vec3& inverse, double tMin, double tMax,
-                double& tEnter) {
+bool hitsBounds(const Vector3d& lo, const Vector3d& hi, const Ray& ray, const Vector3d& inverse, double tMin,
+                double tMax, double& tEnter) {
   double t0 = tMin;
   double t1 = tMax;
-  const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
-  const double inv[3] = {inverse.x, inverse.y, inverse.z};
-  const double l[3] = {lo.x, lo.y, lo.z};
-  const double h[3] = {hi.x, hi.y, hi.z};
+  const double o[3] = {ray.origin.x(), ray.origin.y(), ray.origin.z()};
+  const double inv[3] = {inverse.x(), inverse.y(), inverse.z()};
+  const double l[3] = {lo.x(), lo.y(), lo.z()};
+  const double h[3] = {hi.x(), hi.y(), hi.z()};
   for (int a = 0; a < 3; ++a) {
     double ta = (l[a] - o[a]) * inv[a];
     double tb = (h[a] - o[a]) * inv[a];
@@ -33,20 +35,20 @@ bool hitsBounds(const Vec3& lo, const Vec3& hi, const Ray& ray, const Vec3& inve
   return true;
 }
 
-Vec3 safeInverse(const Vec3& d) {
+Vector3d safeInverse(const Vector3d& d) {
   auto inv = [](double v) { return std::abs(v) < 1e-300 ? 1e300 : 1.0 / v; };
-  return {inv(d.x), inv(d.y), inv(d.z)};
+  return {inv(d.x()), inv(d.y()), inv(d.z())};
 }
 
 // Box in its own frame (yaw undone): slab test that also reports the face.
-bool intersectBox(const Primitive& p, const Ray& ray, double tMin, double tMax, double& t, Vec3& normal) {
+bool intersectBox(const Primitive& p, const Ray& ray, double tMin, double tMax, double& t, Vector3d& normal) {
   const double c = std::cos(p.yaw);
   const double s = std::sin(p.yaw);
-  const Vec3 rel = ray.origin - p.center;
-  const double o[3] = {c * rel.x + s * rel.y, -s * rel.x + c * rel.y, rel.z};
-  const double d[3] = {c * ray.direction.x + s * ray.direction.y, -s * ray.direction.x + c * ray.direction.y,
-                       ray.direction.z};
-  const double h[3] = {p.half.x, p.half.y, p.half.z};
+  const Vector3d rel = ray.origin - p.center;
+  const double o[3] = {c * rel.x() + s * rel.y(), -s * rel.x() + c * rel.y(), rel.z()};
+  const double d[3] = {c * ray.direction.x() + s * ray.direction.y(), -s * ray.direction.x() + c * ray.direction.y(),
+                       ray.direction.z()};
+  const double h[3] = {p.half.x(), p.half.y(), p.half.z()};
   double t0 = -1e300;
   double t1 = 1e300;
   int axis0 = 0;
@@ -82,38 +84,38 @@ bool intersectBox(const Primitive& p, const Ray& ray, double tMin, double tMax, 
   return true;
 }
 
-bool intersectCylinder(const Primitive& p, const Ray& ray, double tMin, double tMax, double& t, Vec3& normal) {
-  const double r = p.half.x;
-  const double zLo = p.center.z - p.half.z;
-  const double zHi = p.center.z + p.half.z;
+bool intersectCylinder(const Primitive& p, const Ray& ray, double tMin, double tMax, double& t, Vector3d& normal) {
+  const double r = p.half.x();
+  const double zLo = p.center.z() - p.half.z();
+  const double zHi = p.center.z() + p.half.z();
   bool found = false;
-  const double ox = ray.origin.x - p.center.x;
-  const double oy = ray.origin.y - p.center.y;
-  const double a = ray.direction.x * ray.direction.x + ray.direction.y * ray.direction.y;
+  const double ox = ray.origin.x() - p.center.x();
+  const double oy = ray.origin.y() - p.center.y();
+  const double a = ray.direction.x() * ray.direction.x() + ray.direction.y() * ray.direction.y();
   if (a > 1e-300) {
-    const double b = ox * ray.direction.x + oy * ray.direction.y;
+    const double b = ox * ray.direction.x() + oy * ray.direction.y();
     const double cc = ox * ox + oy * oy - r * r;
     const double disc = b * b - a * cc;
     if (disc >= 0) {
       const double root = std::sqrt(disc);
       for (double candidate : {(-b - root) / a, (-b + root) / a}) {
         if (candidate <= tMin || candidate >= tMax) continue;
-        const double z = ray.origin.z + candidate * ray.direction.z;
+        const double z = ray.origin.z() + candidate * ray.direction.z();
         if (z < zLo || z > zHi) continue;
         t = candidate;
-        normal = {(ox + t * ray.direction.x) / r, (oy + t * ray.direction.y) / r, 0.0};
+        normal = {(ox + t * ray.direction.x()) / r, (oy + t * ray.direction.y()) / r, 0.0};
         tMax = t;
         found = true;
         break;
       }
     }
   }
-  if (std::abs(ray.direction.z) > 1e-300) {
+  if (std::abs(ray.direction.z()) > 1e-300) {
     for (double zCap : {zLo, zHi}) {
-      const double candidate = (zCap - ray.origin.z) / ray.direction.z;
+      const double candidate = (zCap - ray.origin.z()) / ray.direction.z();
       if (candidate <= tMin || candidate >= tMax) continue;
-      const double x = ox + candidate * ray.direction.x;
-      const double y = oy + candidate * ray.direction.y;
+      const double x = ox + candidate * ray.direction.x();
+      const double y = oy + candidate * ray.direction.y();
       if (x * x + y * y > r * r) continue;
       t = candidate;
       normal = {0, 0, zCap == zHi ? 1.0 : -1.0};
@@ -124,10 +126,10 @@ bool intersectCylinder(const Primitive& p, const Ray& ray, double tMin, double t
   return found;
 }
 
-bool intersectEllipsoid(const Primitive& p, const Ray& ray, double tMin, double tMax, double& t, Vec3& normal) {
-  const Vec3 rel = ray.origin - p.center;
-  const Vec3 o{rel.x / p.half.x, rel.y / p.half.y, rel.z / p.half.z};
-  const Vec3 d{ray.direction.x / p.half.x, ray.direction.y / p.half.y, ray.direction.z / p.half.z};
+bool intersectEllipsoid(const Primitive& p, const Ray& ray, double tMin, double tMax, double& t, Vector3d& normal) {
+  const Vector3d rel = ray.origin - p.center;
+  const Vector3d o{rel.x() / p.half.x(), rel.y() / p.half.y(), rel.z() / p.half.z()};
+  const Vector3d d{ray.direction.x() / p.half.x(), ray.direction.y() / p.half.y(), ray.direction.z() / p.half.z()};
   const double a = dot(d, d);
   const double b = dot(o, d);
   const double disc = b * b - a * (dot(o, o) - 1.0);
@@ -136,8 +138,9 @@ bool intersectEllipsoid(const Primitive& p, const Ray& ray, double tMin, double 
   for (double candidate : {(-b - root) / a, (-b + root) / a}) {
     if (candidate <= tMin || candidate >= tMax) continue;
     t = candidate;
-    const Vec3 q = rel + ray.direction * t;
-    normal = normalized({q.x / (p.half.x * p.half.x), q.y / (p.half.y * p.half.y), q.z / (p.half.z * p.half.z)});
+    const Vector3d q = rel + ray.direction * t;
+    normal = normalized({q.x() / (p.half.x() * p.half.x()), q.y() / (p.half.y() * p.half.y()),
+                         q.z() / (p.half.z() * p.half.z())});
     return true;
   }
   return false;
@@ -146,7 +149,7 @@ bool intersectEllipsoid(const Primitive& p, const Ray& ray, double tMin, double 
 }  // namespace
 
 Scene::Scene(std::vector<Primitive> primitives, std::vector<Material> materials, RoadLayout road, int roadMaterial,
-             Vec3 sunDirection, std::uint32_t seed)
+             Vector3d sunDirection, std::uint32_t seed)
     : primitives_(std::move(primitives)),
       materials_(std::move(materials)),
       road_(std::move(road)),
@@ -156,11 +159,11 @@ Scene::Scene(std::vector<Primitive> primitives, std::vector<Material> materials,
   primitiveBounds_.resize(primitives_.size());
   for (std::size_t i = 0; i < primitives_.size(); ++i) {
     const Primitive& p = primitives_[i];
-    Vec3 extent = p.half;
+    Vector3d extent = p.half;
     if (p.shape == Shape::Box && p.yaw != 0.0) {
       const double c = std::abs(std::cos(p.yaw));
       const double s = std::abs(std::sin(p.yaw));
-      extent = {c * p.half.x + s * p.half.y, s * p.half.x + c * p.half.y, p.half.z};
+      extent = {c * p.half.x() + s * p.half.y(), s * p.half.x() + c * p.half.y(), p.half.z()};
     }
     primitiveBounds_[i].lo = p.center - extent;
     primitiveBounds_[i].hi = p.center + extent;
@@ -179,11 +182,15 @@ int Scene::build(int first, int count, int depth) {
   Bounds centers;
   for (int i = first; i < first + count; ++i) {
     const Bounds& b = primitiveBounds_[order_[i]];
-    bounds.lo = {std::min(bounds.lo.x, b.lo.x), std::min(bounds.lo.y, b.lo.y), std::min(bounds.lo.z, b.lo.z)};
-    bounds.hi = {std::max(bounds.hi.x, b.hi.x), std::max(bounds.hi.y, b.hi.y), std::max(bounds.hi.z, b.hi.z)};
-    const Vec3 c = (b.lo + b.hi) * 0.5;
-    centers.lo = {std::min(centers.lo.x, c.x), std::min(centers.lo.y, c.y), std::min(centers.lo.z, c.z)};
-    centers.hi = {std::max(centers.hi.x, c.x), std::max(centers.hi.y, c.y), std::max(centers.hi.z, c.z)};
+    // std::min/max spelled out, not cwiseMin/Max: SIMD min/max pick the other operand of a tie
+    // (-0 vs +0), which could move a bound and the BVH with it.
+    bounds.lo = {std::min(bounds.lo.x(), b.lo.x()), std::min(bounds.lo.y(), b.lo.y()),
+                 std::min(bounds.lo.z(), b.lo.z())};
+    bounds.hi = {std::max(bounds.hi.x(), b.hi.x()), std::max(bounds.hi.y(), b.hi.y()),
+                 std::max(bounds.hi.z(), b.hi.z())};
+    const Vector3d c = (b.lo + b.hi) * 0.5;
+    centers.lo = {std::min(centers.lo.x(), c.x()), std::min(centers.lo.y(), c.y()), std::min(centers.lo.z(), c.z())};
+    centers.hi = {std::max(centers.hi.x(), c.x()), std::max(centers.hi.y(), c.y()), std::max(centers.hi.z(), c.z())};
   }
   nodes_[index].bounds = bounds;
   if (count <= kLeafSize || depth > 40) {
@@ -191,11 +198,11 @@ int Scene::build(int first, int count, int depth) {
     nodes_[index].count = count;
     return index;
   }
-  const Vec3 span = centers.hi - centers.lo;
-  const int axis = span.x >= span.y && span.x >= span.z ? 0 : (span.y >= span.z ? 1 : 2);
+  const Vector3d span = centers.hi - centers.lo;
+  const int axis = span.x() >= span.y() && span.x() >= span.z() ? 0 : (span.y() >= span.z() ? 1 : 2);
   auto key = [&](int i) {
     const Bounds& b = primitiveBounds_[i];
-    return axis == 0 ? b.lo.x + b.hi.x : axis == 1 ? b.lo.y + b.hi.y : b.lo.z + b.hi.z;
+    return axis == 0 ? b.lo.x() + b.hi.x() : axis == 1 ? b.lo.y() + b.hi.y() : b.lo.z() + b.hi.z();
   };
   // A full sort with the index as tie-breaker: the same tree with any standard library.
   std::sort(order_.begin() + first, order_.begin() + first + count, [&](int a, int b) {
@@ -214,7 +221,7 @@ int Scene::build(int first, int count, int depth) {
 bool Scene::intersectPrimitive(int index, const Ray& ray, double tMin, double tMax, Hit& hit) const {
   const Primitive& p = primitives_[index];
   double t = 0;
-  Vec3 normal;
+  Vector3d normal = Vector3d::Zero();
   bool found = false;
   switch (p.shape) {
     case Shape::Box: found = intersectBox(p, ray, tMin, tMax, t, normal); break;
@@ -224,7 +231,7 @@ bool Scene::intersectPrimitive(int index, const Ray& ray, double tMin, double tM
   if (!found) return false;
   hit.t = t;
   hit.point = ray.origin + ray.direction * t;
-  hit.normal = dot(normal, ray.direction) > 0 ? normal * -1.0 : normal;
+  hit.normal = dot(normal, ray.direction) > 0 ? Vector3d(normal * -1.0) : normal;
   hit.primitive = index;
   hit.material = p.material;
   hit.isObject = p.isObject;
@@ -235,14 +242,14 @@ bool Scene::intersect(const Ray& ray, double tMin, double tMax, Hit& hit) const 
   bool found = false;
   double best = tMax;
   // The road plane z = 0, up to the facade that closes the street.
-  if (ray.direction.z < 0.0 && ray.origin.z > 0.0) {
-    const double t = -ray.origin.z / ray.direction.z;
-    if (t > tMin && t < best && ray.origin.x + t * ray.direction.x <= road_.endX) {
+  if (ray.direction.z() < 0.0 && ray.origin.z() > 0.0) {
+    const double t = -ray.origin.z() / ray.direction.z();
+    if (t > tMin && t < best && ray.origin.x() + t * ray.direction.x() <= road_.endX) {
       best = t;
       found = true;
       hit.t = t;
       hit.point = ray.origin + ray.direction * t;
-      hit.point.z = 0.0;
+      hit.point.z() = 0.0;
       hit.normal = {0, 0, 1};
       hit.primitive = -1;
       hit.material = roadMaterial_;
@@ -250,7 +257,7 @@ bool Scene::intersect(const Ray& ray, double tMin, double tMax, Hit& hit) const 
     }
   }
   if (nodes_.empty()) return found;
-  const Vec3 inverse = safeInverse(ray.direction);
+  const Vector3d inverse = safeInverse(ray.direction);
   int stack[96];
   int top = 0;
   double enter = 0;

@@ -9,7 +9,7 @@ namespace synth {
 /// `direction` of the ray in any length; `footprint` the pixel's size on the surface [m].
 Rgb shade(const Scene& scene, const Ray& ray, const Hit& hit, Weather weather, double footprint);
 
-Rgb skyColor(const Vec3& direction, Weather weather);
+Rgb skyColor(const Eigen::Vector3d& direction, Weather weather);
 
 }  // namespace synth
 }  // namespace lidar_sgm

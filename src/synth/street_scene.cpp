@@ -8,6 +8,8 @@
 
 namespace lidar_sgm {
 namespace synth {
+
+using Eigen::Vector3d;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -25,7 +27,7 @@ class StreetBuilder {
     addTraffic();
     const double sunAzimuth = uniform(rng_, -kPi, kPi);
     const double sunElevation = uniform(rng_, 0.5, 1.1);
-    const Vec3 sun{std::cos(sunElevation) * std::cos(sunAzimuth), std::cos(sunElevation) * std::sin(sunAzimuth),
+    const Vector3d sun{std::cos(sunElevation) * std::cos(sunAzimuth), std::cos(sunElevation) * std::sin(sunAzimuth),
                    std::sin(sunElevation)};
     return Scene(std::move(primitives_), std::move(materials_), road_, road, sun, seed_);
   }
@@ -45,7 +47,7 @@ class StreetBuilder {
     return static_cast<int>(materials_.size()) - 1;
   }
 
-  void box(Vec3 lo, Vec3 hi, int mat, bool isObject, double yaw = 0.0) {
+  void box(Vector3d lo, Vector3d hi, int mat, bool isObject, double yaw = 0.0) {
     Primitive p;
     p.shape = Shape::Box;
     p.center = (lo + hi) * 0.5;
@@ -66,7 +68,7 @@ class StreetBuilder {
     primitives_.push_back(p);
   }
 
-  void ellipsoid(Vec3 center, Vec3 radii, int mat) {
+  void ellipsoid(Vector3d center, Vector3d radii, int mat) {
     Primitive p;
     p.shape = Shape::Ellipsoid;
     p.center = center;
@@ -179,7 +181,9 @@ class StreetBuilder {
     const int blobs = uniformInt(rng_, 1, 3);
     for (int i = 0; i < blobs; ++i) {
       const double r = uniform(rng_, 1.1, 2.0);
-      const Vec3 center{x + uniform(rng_, -0.6, 0.6), y + uniform(rng_, -0.6, 0.6), trunk + r * uniform(rng_, 0.6, 1.0)};
+      // Braces, not parentheses: a braced list is evaluated left to right, so the draws keep their order.
+      const Vector3d center{x + uniform(rng_, -0.6, 0.6), y + uniform(rng_, -0.6, 0.6),
+                            trunk + r * uniform(rng_, 0.6, 1.0)};
       ellipsoid(center, {r, r * uniform(rng_, 0.8, 1.1), r * uniform(rng_, 0.7, 1.0)}, leaves);
     }
   }
@@ -206,8 +210,8 @@ class StreetBuilder {
     const double c = std::cos(yaw);
     const double s = std::sin(yaw);
     auto part = [&](double along, double halfLength, double halfWidth, double z0, double z1, int mat) {
-      const Vec3 center{x + c * along, y + s * along, 0.5 * (z0 + z1)};
-      const Vec3 half{halfLength, halfWidth, 0.5 * (z1 - z0)};
+      const Vector3d center{x + c * along, y + s * along, 0.5 * (z0 + z1)};
+      const Vector3d half{halfLength, halfWidth, 0.5 * (z1 - z0)};
       box(center - half, center + half, mat, true, yaw);
     };
     part(0.0, 0.5 * length - 0.3, 0.5 * width - 0.05, 0.0, 0.36, tire);

@@ -9,21 +9,23 @@
 
 namespace lidar_sgm {
 namespace synth {
+
+using Eigen::Vector3d;
 namespace {
 
 double smooth(double t) { return t * t * (3.0 - 2.0 * t); }
 
 // Trilinear value noise on the integer lattice, in [0, 1).
-double valueNoise(const Vec3& p, std::uint32_t seed) {
-  const double fx = std::floor(p.x);
-  const double fy = std::floor(p.y);
-  const double fz = std::floor(p.z);
+double valueNoise(const Vector3d& p, std::uint32_t seed) {
+  const double fx = std::floor(p.x());
+  const double fy = std::floor(p.y());
+  const double fz = std::floor(p.z());
   const auto ix = static_cast<std::int64_t>(fx);
   const auto iy = static_cast<std::int64_t>(fy);
   const auto iz = static_cast<std::int64_t>(fz);
-  const double tx = smooth(p.x - fx);
-  const double ty = smooth(p.y - fy);
-  const double tz = smooth(p.z - fz);
+  const double tx = smooth(p.x() - fx);
+  const double ty = smooth(p.y() - fy);
+  const double tz = smooth(p.z() - fz);
   double corners[2][2][2];
   for (int k = 0; k < 2; ++k) {
     for (int j = 0; j < 2; ++j) {
@@ -43,7 +45,7 @@ double valueNoise(const Vec3& p, std::uint32_t seed) {
 double detail(double period, double footprint) { return std::clamp(period / (2.5 * footprint) - 1.0, 0.0, 1.0); }
 
 // Fractal noise, frequency `base` [1/m], octaves finer than the footprint replaced by their mean.
-double fbm(const Vec3& p, double base, int octaves, double footprint, std::uint32_t seed) {
+double fbm(const Vector3d& p, double base, int octaves, double footprint, std::uint32_t seed) {
   double sum = 0;
   double amplitude = 0.5;
   double frequency = base;
@@ -61,30 +63,30 @@ double fbm(const Vec3& p, double base, int octaves, double footprint, std::uint3
 
 // In-plane coordinates (u horizontal, v vertical for walls) from the dominant normal axis.
 void planeCoordinates(const Hit& hit, double& u, double& v) {
-  const Vec3& n = hit.normal;
-  if (std::abs(n.z) >= std::abs(n.x) && std::abs(n.z) >= std::abs(n.y)) {
-    u = hit.point.x;
-    v = hit.point.y;
-  } else if (std::abs(n.x) >= std::abs(n.y)) {
-    u = hit.point.y;
-    v = hit.point.z;
+  const Vector3d& n = hit.normal;
+  if (std::abs(n.z()) >= std::abs(n.x()) && std::abs(n.z()) >= std::abs(n.y())) {
+    u = hit.point.x();
+    v = hit.point.y();
+  } else if (std::abs(n.x()) >= std::abs(n.y())) {
+    u = hit.point.y();
+    v = hit.point.z();
   } else {
-    u = hit.point.x;
-    v = hit.point.z;
+    u = hit.point.x();
+    v = hit.point.z();
   }
 }
 
 double fraction(double value, double period) { return value / period - std::floor(value / period); }
 
 Rgb road(const Scene& scene, const Material& m, const Hit& hit, double footprint) {
-  const Vec3& p = hit.point;
+  const Vector3d& p = hit.point;
   const double grain = fbm(p, 3.0, 5, footprint, m.noiseSeed);
   Rgb color = m.base * (0.7 + 0.6 * grain);
   const RoadLayout& layout = scene.road();
   const double halfLine = 0.5 * layout.lineWidth;
   bool marking = false;
-  for (double y : layout.solidLinesY) marking = marking || std::abs(p.y - y) < halfLine;
-  if (std::abs(p.y - layout.dashedLineY) < halfLine && fraction(p.x, layout.dashPeriod) * layout.dashPeriod < layout.dashLength) {
+  for (double y : layout.solidLinesY) marking = marking || std::abs(p.y() - y) < halfLine;
+  if (std::abs(p.y() - layout.dashedLineY) < halfLine && fraction(p.x(), layout.dashPeriod) * layout.dashPeriod < layout.dashLength) {
     marking = true;
   }
   if (marking) color = m.alt * (0.9 + 0.2 * grain);
@@ -112,10 +114,10 @@ Rgb facade(const Material& m, const Hit& hit, double footprint) {
   double u = 0;
   double v = 0;
   planeCoordinates(hit, u, v);
-  const bool wall = std::abs(hit.normal.z) < 0.5;
+  const bool wall = std::abs(hit.normal.z()) < 0.5;
   Rgb color;
   if (wall && window(m, u, v, footprint, color)) return color;
-  const Vec3& p = hit.point;
+  const Vector3d& p = hit.point;
   switch (m.texture) {
     case Texture::Brick: {
       const double rowHeight = 0.075;
@@ -147,7 +149,7 @@ Rgb facade(const Material& m, const Hit& hit, double footprint) {
 
 Rgb albedo(const Scene& scene, const Hit& hit, double footprint) {
   const Material& m = scene.materials()[static_cast<std::size_t>(hit.material)];
-  const Vec3& p = hit.point;
+  const Vector3d& p = hit.point;
   switch (m.texture) {
     case Texture::Road:
       return road(scene, m, hit, footprint);
@@ -180,11 +182,11 @@ Rgb albedo(const Scene& scene, const Hit& hit, double footprint) {
       return mix(m.alt, m.base * 1.3, std::clamp(1.6 * n - 0.3, 0.0, 1.0));
     }
     case Texture::Bark:
-      return mix(m.alt, m.base, fbm({p.x * 6.0, p.y * 6.0, p.z * 1.0}, 2.0, 3, footprint, m.noiseSeed));
+      return mix(m.alt, m.base, fbm({p.x() * 6.0, p.y() * 6.0, p.z() * 1.0}, 2.0, 3, footprint, m.noiseSeed));
     case Texture::Metal:
       return m.base * (0.92 + 0.16 * fbm(p, 3.0, 2, footprint, m.noiseSeed));
     case Texture::SignStripes: {
-      const double stripe = fraction(p.y + p.z, 0.2);
+      const double stripe = fraction(p.y() + p.z(), 0.2);
       return mix(mix(m.base, m.alt, 0.5), stripe < 0.5 ? m.base : m.alt, detail(0.2, footprint));
     }
   }

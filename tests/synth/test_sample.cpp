@@ -45,13 +45,13 @@ cv::Mat readPng(const std::string& folder) {
   return image;
 }
 
-long differingColorPixels(const cv::Mat& bgr, const Image<synth::Rgb8>& rgb) {
+long differingColorPixels(const cv::Mat& bgr, const Image<Rgb8>& rgb) {
   if (bgr.type() != CV_8UC3 || bgr.cols != rgb.width() || bgr.rows != rgb.height()) return -1;
   long differing = 0;
   for (int y = 0; y < bgr.rows; ++y) {
     for (int x = 0; x < bgr.cols; ++x) {
       const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-      const synth::Rgb8 q = rgb(x, y);
+      const Rgb8 q = rgb(x, y);
       differing += (p[0] != q.b || p[1] != q.g || p[2] != q.r) ? 1 : 0;
     }
   }

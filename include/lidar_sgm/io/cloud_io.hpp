@@ -18,12 +18,22 @@ namespace io {
 /// std::runtime_error naming the file when it is missing, or when its size is not a multiple of
 /// 16 bytes (a truncated file is never read in part). An empty file gives an empty cloud.
 pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path);
+/// The same from the file's bytes already in memory (`size` bytes at `data`); `source` names them
+/// in messages.
+pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::size_t size,
+                                                       const std::string& source = "<buffer>");
 
 /// PCD (ASCII, binary or binary-compressed) or PLY with at least x, y, z fields (float or
 /// double); intensity is read when there is an "intensity" (or PLY "reflectance") field,
 /// else 0. RGB fields are accepted and ignored. Throws std::runtime_error naming the file for a
 /// missing or unreadable file or missing x/y/z fields.
 pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path);
+/// A PCD file's bytes (any of the three encodings) already in memory, read as readPcdOrPly()
+/// reads a .pcd file (the file reader goes through the same parser: PCL's stream header reader
+/// and body readers); `source` names them in messages. There is no PLY counterpart: PCL 1.13's
+/// PLYReader parses files by name only.
+pcl::PointCloud<pcl::PointXYZI> readPcdFromBuffer(const void* data, std::size_t size,
+                                                  const std::string& source = "<buffer>");
 
 /// Picks the reader from the extension: .bin, .pcd, .ply (case-insensitive); any other
 /// extension is an error naming the accepted ones.

@@ -41,7 +41,7 @@ struct LidarOptions {
 /// One sweep from `position` (world frame; the LiDAR's axes are the world's). Ranges get Gaussian
 /// noise; returns drop out on dark and on specular surfaces and at grazing angles. Points come
 /// column by column (azimuth from +90 to -90 deg), top beam first.
-std::vector<LidarPoint> scanLidar(const Scene& scene, const Vec3& position, const LidarOptions& options,
+std::vector<LidarPoint> scanLidar(const Scene& scene, const Eigen::Vector3d& position, const LidarOptions& options,
                                   std::uint32_t seed);
 
 }  // namespace synth

@@ -19,16 +19,10 @@ std::string toString(Weather weather);
 /// "clear" or "rain"; throws std::invalid_argument naming the accepted values.
 Weather weatherFromString(const std::string& name);
 
-struct Rgb8 {
-  std::uint8_t r = 0;
-  std::uint8_t g = 0;
-  std::uint8_t b = 0;
-};
-
 /// A rectified pinhole camera looking along +x of the world (KITTI camera axes: x right = -y
 /// world, y down = -z world, z forward = +x world). Pixel (u, v) is the centre of the pixel.
 struct PinholeCamera {
-  Vec3 position;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
   int width = 0;
   int height = 0;
   double focal = 0;  ///< [px]
@@ -40,7 +34,7 @@ struct PinholeCamera {
 };
 
 struct RenderedView {
-  Image<Rgb8> color;
+  Image<Rgb8> color;              ///< lidar_sgm::Rgb8 (core), what the pipeline takes as color
   Image<float> depth;             ///< z in the camera [m]; 0 for sky (no ground truth, as in KITTI)
   Image<std::uint8_t> objectMask; ///< 1 on cars, poles, signs, trees
 };

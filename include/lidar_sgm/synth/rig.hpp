@@ -19,20 +19,20 @@ struct StereoRig {
   double cameraHeight = 1.65;  ///< left camera above the road [m]
   double thirdCameraOffset = 0.20;  ///< third camera above the left one, same orientation [m]
   /// LiDAR origin relative to the left camera, world axes: 0.27 m behind, 0.08 m above (KITTI).
-  Vec3 lidarOffset{-0.27, 0.0, 0.08};
+  Eigen::Vector3d lidarOffset{-0.27, 0.0, 0.08};
 
   /// KITTI's intrinsics scaled to `width` x `height` (f and cx with the width, cy with the height).
   static StereoRig kittiLike(int width, int height, double baseline);
 
-  Vec3 leftPosition() const { return {0.0, 0.0, cameraHeight}; }
-  Vec3 lidarPosition() const { return leftPosition() + lidarOffset; }
+  Eigen::Vector3d leftPosition() const { return {0.0, 0.0, cameraHeight}; }
+  Eigen::Vector3d lidarPosition() const { return leftPosition() + lidarOffset; }
   PinholeCamera left() const;
   PinholeCamera right() const;
   PinholeCamera up() const;
 
   /// A LiDAR-frame point (x forward, y left, z up) in the left camera's KITTI axes (x right,
   /// y down, z forward): the transform written as Tr_velo_to_cam.
-  Vec3 lidarToCamera(const Vec3& lidarPoint) const;
+  Eigen::Vector3d lidarToCamera(const Eigen::Vector3d& lidarPoint) const;
 };
 
 /// KITTI object-benchmark calibration: P0..P3 (P2 = left, P3 = right with P3[0][3] = -f*b; P0 and P1

@@ -7,7 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "lidar_sgm/synth/vec3.hpp"
+#include <Eigen/Core>
+
+#include "lidar_sgm/synth/color.hpp"
+#include "lidar_sgm/synth/vector_ops.hpp"
 
 namespace lidar_sgm {
 namespace synth {
@@ -48,8 +51,9 @@ enum class Shape : std::uint8_t {
 
 struct Primitive {
   Shape shape = Shape::Box;
-  Vec3 center;
-  Vec3 half;       ///< Box: half extents; Cylinder: (radius, radius, half height); Ellipsoid: radii
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  /// Box: half extents; Cylinder: (radius, radius, half height); Ellipsoid: radii.
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
   double yaw = 0;  ///< Box only [rad]
   int material = 0;
   bool isObject = false;  ///< cars, poles, signs, trees: the foreground mask
@@ -67,23 +71,24 @@ struct RoadLayout {
 
 struct Hit {
   double t = 0;           ///< ray parameter: point = origin + t * direction
-  Vec3 point;
-  Vec3 normal;            ///< unit, facing the ray
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< unit, facing the ray
   int primitive = -1;     ///< -1: the road plane
   int material = 0;
   bool isObject = false;
 };
 
 struct Ray {
-  Vec3 origin;
-  Vec3 direction;  ///< need not be unit length (cameras use forward component 1, so t = depth)
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  /// Need not be unit length (cameras use forward component 1, so t = depth).
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
 };
 
 class Scene {
  public:
   Scene() = default;
   Scene(std::vector<Primitive> primitives, std::vector<Material> materials, RoadLayout road, int roadMaterial,
-        Vec3 sunDirection, std::uint32_t seed);
+        Eigen::Vector3d sunDirection, std::uint32_t seed);
 
   /// Nearest hit with t in (tMin, tMax); false for sky.
   bool intersect(const Ray& ray, double tMin, double tMax, Hit& hit) const;
@@ -91,13 +96,13 @@ class Scene {
   const std::vector<Primitive>& primitives() const { return primitives_; }
   const std::vector<Material>& materials() const { return materials_; }
   const RoadLayout& road() const { return road_; }
-  const Vec3& sunDirection() const { return sun_; }
+  const Eigen::Vector3d& sunDirection() const { return sun_; }
   std::uint32_t seed() const { return seed_; }
 
  private:
   struct Bounds {
-    Vec3 lo{1e30, 1e30, 1e30};
-    Vec3 hi{-1e30, -1e30, -1e30};
+    Eigen::Vector3d lo{1e30, 1e30, 1e30};
+    Eigen::Vector3d hi{-1e30, -1e30, -1e30};
   };
   struct Node {
     Bounds bounds;
@@ -114,7 +119,7 @@ class Scene {
   std::vector<Material> materials_;
   RoadLayout road_;
   int roadMaterial_ = 0;
-  Vec3 sun_{0, 0, 1};
+  Eigen::Vector3d sun_{0, 0, 1};
   std::uint32_t seed_ = 0;
   std::vector<Node> nodes_;   ///< bounding-volume hierarchy over primitives_ (the road is tested apart)
   std::vector<int> order_;
