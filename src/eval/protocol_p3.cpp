@@ -1,14 +1,8 @@
 // Protocol P3: synthetic frames of the project's own generator, exact dense GT.
-#include <atomic>
-#include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
@@ -19,8 +13,6 @@
 
 namespace lidar_sgm {
 namespace eval {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -39,29 +31,11 @@ cv::Mat toBgr(const Image<Rgb8>& color) {
   return bgr;
 }
 
-/// The rig's calibration as a user gets it: the KITTI text lidar_sgm_synth writes, read back by
-/// io::readKittiCalibration through a temporary file (removed again).
+/// The rig's calibration as a user gets it: the KITTI text lidar_sgm_synth writes, parsed by the
+/// same reader as a calibration file.
 geometry::StereoCalibration writtenCalibration(const synth::StereoRig& rig, bool thirdCamera) {
-  static std::atomic<unsigned> counter{0};
-  const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
-  const fs::path path = fs::temp_directory_path() /
-                        ("lidar_sgm_p3_calib_" + std::to_string(::getpid()) + "_" + std::to_string(tick) + "_" +
-                         std::to_string(counter.fetch_add(1)) + ".txt");
-  {
-    std::ofstream out(path);
-    out << synth::kittiCalibrationText(rig, thirdCamera);
-    if (!out) throw std::runtime_error("P3: cannot write the temporary calibration " + path.string());
-  }
-  try {
-    geometry::StereoCalibration calibration = io::readKittiCalibration(path.string(), rig.width, rig.height);
-    std::error_code ec;
-    fs::remove(path, ec);
-    return calibration;
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(path, ec);
-    throw;
-  }
+  return io::readKittiCalibrationFromString(synth::kittiCalibrationText(rig, thirdCamera), "<synthetic rig>",
+                                            rig.width, rig.height);
 }
 
 std::string sixDigits(std::uint32_t seed) {
