@@ -16,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/arguments.hpp"
+#include "common/help_version.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "eval/methods.hpp"
@@ -25,6 +26,7 @@
 #include "eval/report.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/version.hpp"
 
 namespace fs = std::filesystem;
 using namespace lidar_sgm;
@@ -34,11 +36,12 @@ namespace {
 
 void printHelp(const char* program) {
   std::printf(
-      "Syntax is: %s [options]\n"
+      "Syntax is: %s -out DIR [options]\n"
       "Runs the evaluation protocols of EVALUATION.md and writes tables, plots, pictures and JSON.\n"
+      "The whole plan takes minutes (BENCHMARK.md); it is printed before anything runs.\n"
       "where options are:\n"
-      "  -data ROOT         third-party data root (default: ../shared/data beside the repository)\n"
-      "  -out DIR           output folder (default: out/eval)\n"
+      "  -out DIR           output folder, required (the documented run: -out out/eval)\n"
+      "  -data ROOT         third-party data root (default: %s)\n"
       "  -protocols LIST    comma-separated subset of P1,P2,P3 (default: P1,P2,P3)\n"
       "  -synth_frames N    synthetic frames per P3 set (default: 10, seeds 100..)\n"
       "  -synth_size WxH    synthetic frame size (default: 1242x375)\n"
@@ -52,8 +55,10 @@ void printHelp(const char* program) {
       "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n"
       "  -no_pictures       skip the per-frame pictures\n"
       "  and every SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the LiDAR-SGM methods\n"
-      "  -h                 this help\n",
-      program);
+      "  -h, --help         this help\n"
+      "  --version          the tool's name and version\n"
+      "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
+      program, LIDAR_SGM_DEFAULT_DATA_ROOT);
 }
 
 /// The frames of one table: a protocol on one kind of data (medians never mix kinds).
@@ -157,6 +162,7 @@ ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, i
   std::vector<FrameRun> runs(group.frames.size());
   std::atomic<std::size_t> next{0};
   std::mutex printMutex;
+  std::size_t done = 0;  // progress, counted under printMutex
   std::vector<std::string> errors(group.frames.size());
   auto worker = [&]() {
     for (std::size_t i = next++; i < group.frames.size(); i = next++) {
@@ -165,8 +171,8 @@ ProtocolResult runGroup(const Group& group, const std::vector<double>& alphas, i
         runs[i] = runFrame(group.frames[i], group.methods, alphas, base, backend);
         if (!pictures.empty()) writePicture(pictures, group.frames[i], runs[i]);
         std::lock_guard<std::mutex> lock(printMutex);
-        std::printf("  %s / %s [done, %.0f ms]\n", group.frames[i].dataset.c_str(), group.frames[i].name.c_str(),
-                    timer.elapsedMs());
+        std::printf("  [%zu/%zu] %s / %s [done, %.0f ms]\n", ++done, group.frames.size(),
+                    group.frames[i].dataset.c_str(), group.frames[i].name.c_str(), timer.elapsedMs());
         std::fflush(stdout);
       } catch (const std::exception& e) {
         errors[i] = group.frames[i].name + ": " + e.what();
@@ -290,18 +296,66 @@ std::vector<Group> buildGroups(const apps::Arguments& args, const std::string& r
   return groups;
 }
 
+/// The comma-separated `option`'s items, each checked against `known`.
+std::vector<std::string> listOption(const apps::Arguments& args, const std::string& option, const std::string& known) {
+  std::vector<std::string> items;
+  std::stringstream stream(args.text(option, known));
+  for (std::string item; std::getline(stream, item, ',');) {
+    if (("," + known + ",").find("," + item + ",") == std::string::npos) {
+      throw std::invalid_argument("option -" + option + ": unknown item '" + item + "' (known: " + known + ")");
+    }
+    items.push_back(item);
+  }
+  return items;
+}
+
+std::string joinedText(const std::vector<std::string>& items, const char* separator) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : separator) + item;
+  return text;
+}
+
+/// What the run will do, before it loads anything: it takes minutes, so it never starts unseen.
+void printPlan(const apps::Arguments& args, const std::string& root, const std::string& out,
+               const std::vector<double>& alphas, Backend backend, const Parameters& base, int threads) {
+  const std::vector<std::string> protocols = listOption(args, "protocols", "P1,P2,P3");
+  std::vector<std::string> methods;
+  for (const Method& m : baseMethods()) methods.push_back(m.name());
+  std::vector<std::string> sweep;
+  for (double a : alphas) sweep.push_back(std::to_string(a).substr(0, 4));
+  std::printf("lidar_sgm_eval %s: the plan\n", versionString());
+  std::printf("  protocols: %s\n", joinedText(protocols, ", ").c_str());
+  for (const std::string& p : protocols) {
+    if (p == "P1") std::printf("    P1: every GT frame under %s, simulated 64-beam LiDAR\n", root.c_str());
+    if (p == "P2") std::printf("    P2: the real KITTI scans under %s, every 4th ring held out\n", root.c_str());
+    if (p == "P3") {
+      std::printf("    P3: synthetic sets %s, %d frames each (seeds 100..), %s\n",
+                  joinedText(listOption(args, "p3_sets", "clear64,rain64,clear128"), ", ").c_str(),
+                  args.integer("synth_frames", 10), args.text("synth_size", "1242x375").c_str());
+    }
+  }
+  std::printf("  methods:   %s; LiDAR-SGM at alpha %s (P3 clear64 adds the three-camera methods)\n",
+              joinedText(methods, ", ").c_str(), joinedText(sweep, ", ").c_str());
+  std::printf("  matcher:   backend %s, scale %g, %d threads in all\n", toString(resolve(backend)).c_str(), base.scale,
+              threads);
+  std::printf("  outputs:   %s/results.md, %s/results.json, %s/plots/%s\n", out.c_str(), out.c_str(), out.c_str(),
+              args.has("no_pictures") ? "" : (", " + out + "/pictures/").c_str());
+  std::fflush(stdout);
+}
+
 int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
       apps::joined(apps::sgmValueOptions(),
                    {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
-      apps::joined(apps::sgmFlagOptions(), {"h", "help", "no_pictures"}));
-  if (args.has("h") || args.has("help")) {
-    printHelp(argv[0]);
-    return 0;
+      apps::joined(apps::sgmFlagOptions(), {"no_pictures"}));
+  if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
+  if (!args.positionals().empty()) {
+    throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
   }
   const std::string root = args.text("data", LIDAR_SGM_DEFAULT_DATA_ROOT);
-  const std::string out = args.text("out", "out/eval");
+  // Required: the run takes minutes and writes a folder, so it never starts by accident.
+  const std::string out = args.text("out", "");
   // The matcher parameters of every LiDAR-SGM method (alpha is the method's; numDisparities the
   // frame's; threads are shared out by runGroup).
   const Parameters base = apps::parametersFrom(args);
@@ -315,6 +369,11 @@ int run(int argc, char** argv) {
     alphas.push_back(0.7);  // the paper's alpha is always in the table
     std::sort(alphas.begin(), alphas.end());
   }
+  printPlan(args, root, out.empty() ? "DIR" : out, alphas, backend, base, threads);
+  if (out.empty()) {
+    throw std::invalid_argument("nothing run: -out DIR is required, the folder for the results above "
+                                "(e.g. -out out/eval; -h for every option)");
+  }
   fs::create_directories(out + "/plots");
   const std::string pictures = args.has("no_pictures") ? "" : out + "/pictures";
   if (!pictures.empty()) fs::create_directories(pictures);
@@ -326,6 +385,9 @@ int run(int argc, char** argv) {
   std::size_t frames = 0;
   for (const Group& g : groups) frames += g.frames.size();
   std::printf(" [done, %.0f ms : %zu groups, %zu frames]\n", loadTimer.elapsedMs(), groups.size(), frames);
+  for (const Group& g : groups) {
+    std::printf("  %s: %zu frames, %zu methods + the alpha sweep\n", g.name.c_str(), g.frames.size(), g.methods.size());
+  }
   if (frames == 0) throw std::runtime_error("no frame found under '" + root + "'");
 
   std::vector<ProtocolResult> results;
