@@ -319,6 +319,9 @@ std::string joinedText(const std::vector<std::string>& items, const char* separa
 void printPlan(const apps::Arguments& args, const std::string& root, const std::string& out,
                const std::vector<double>& alphas, Backend backend, const Parameters& base, int threads) {
   const std::vector<std::string> protocols = listOption(args, "protocols", "P1,P2,P3");
+  const std::vector<std::string> sets = listOption(args, "p3_sets", "clear64,rain64,clear128");
+  const bool threeCameras = std::find(protocols.begin(), protocols.end(), "P3") != protocols.end() &&
+                            std::find(sets.begin(), sets.end(), "clear64") != sets.end();
   std::vector<std::string> methods;
   for (const Method& m : baseMethods()) methods.push_back(m.name());
   std::vector<std::string> sweep;
@@ -329,13 +332,12 @@ void printPlan(const apps::Arguments& args, const std::string& root, const std::
     if (p == "P1") std::printf("    P1: every GT frame under %s, simulated 64-beam LiDAR\n", root.c_str());
     if (p == "P2") std::printf("    P2: the real KITTI scans under %s, every 4th ring held out\n", root.c_str());
     if (p == "P3") {
-      std::printf("    P3: synthetic sets %s, %d frames each (seeds 100..), %s\n",
-                  joinedText(listOption(args, "p3_sets", "clear64,rain64,clear128"), ", ").c_str(),
+      std::printf("    P3: synthetic sets %s, %d frames each (seeds 100..), %s\n", joinedText(sets, ", ").c_str(),
                   args.integer("synth_frames", 10), args.text("synth_size", "1242x375").c_str());
     }
   }
-  std::printf("  methods:   %s; LiDAR-SGM at alpha %s (P3 clear64 adds the three-camera methods)\n",
-              joinedText(methods, ", ").c_str(), joinedText(sweep, ", ").c_str());
+  std::printf("  methods:   %s; LiDAR-SGM at alpha %s%s\n", joinedText(methods, ", ").c_str(),
+              joinedText(sweep, ", ").c_str(), threeCameras ? "; on P3 clear64 also the three-camera methods" : "");
   std::printf("  matcher:   backend %s, scale %g, %d threads in all\n", toString(resolve(backend)).c_str(), base.scale,
               threads);
   std::printf("  outputs:   %s/results.md, %s/results.json, %s/plots/%s\n", out.c_str(), out.c_str(), out.c_str(),
