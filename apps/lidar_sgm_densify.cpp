@@ -11,6 +11,7 @@
 #include <pcl/console/print.h>
 
 #include "common/arguments.hpp"
+#include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
@@ -58,7 +59,9 @@ void printHelp(const char* program) {
       "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
       "                           0 = none or beyond -max_depth)\n"
       "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
-      "  -h                       this help\n",
+      "  -h, --help               this help\n"
+      "  --version                the tool's name and version\n"
+      "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
       projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
       projection.occlusion.halfHeight);
@@ -207,15 +210,12 @@ int run(int argc, char** argv) {
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
                                "disparity", "depth", "color"}),
                        joined(lidar_sgm::apps::sgmFlagOptions(),
-                              {"h", "help", "keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
-  if (args.has("h") || args.has("help")) {
-    printHelp(argv[0]);
-    return 0;
-  }
+                              {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
   if (files.size() != 2) {
-    printHelp(argv[0]);
-    throw std::invalid_argument("expected INPUT and OUTPUT, got " + std::to_string(files.size()) + " file name(s)");
+    throw std::invalid_argument("expected INPUT and OUTPUT, got " + std::to_string(files.size()) +
+                                " file name(s) (see -h)");
   }
   const std::string inputPath = files[0];
   const std::string outPath = files[1];

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/arguments.hpp"
+#include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
@@ -39,7 +40,9 @@ void printHelp(const char* program) {
       "  -no_crop_to_scan         LiDAR-only: keep pixels above the scan's top / below its bottom beam (default:\n"
       "                           cleared, nothing was measured there; as lidar_sgm_densify)\n"
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
-      "  -h                       this help\n",
+      "  -h, --help               this help\n"
+      "  --version                the tool's name and version\n"
+      "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str());
 }
 
@@ -49,16 +52,12 @@ void requirePngOutput(const std::string& path, const std::vector<std::string>& i
 
 int run(int argc, char** argv) {
   const Arguments args(argc, argv, joined(sgmValueOptions(), {"lidar", "lidar_depth", "fb", "color"}),
-                       joined(sgmFlagOptions(), {"h", "help", "no_crop_to_scan"}));
-  if (args.has("h") || args.has("help")) {
-    printHelp(argv[0]);
-    return 0;
-  }
+                       joined(sgmFlagOptions(), {"no_crop_to_scan"}));
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_disparity", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
   if (files.size() != 2 && files.size() != 3) {
-    printHelp(argv[0]);
     throw std::invalid_argument("expected LEFT.png [RIGHT.png] OUT.png, got " + std::to_string(files.size()) +
-                                " file name(s)");
+                                " file name(s) (see -h)");
   }
   const bool stereo = files.size() == 3;
   const std::string leftPath = files[0];

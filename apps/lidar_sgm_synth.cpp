@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "common/arguments.hpp"
+#include "common/help_version.hpp"
 #include "common/timer.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/synth/encoding.hpp"
@@ -48,7 +49,9 @@ void printHelp(const char* program) {
       "  -baseline B           stereo baseline [m], in [0.05, 2] (default: %g)\n"
       "  -width W -height H    image size [px]; KITTI intrinsics scaled to it (default: %dx%d)\n"
       "  -lidar_in_camera_view keep only the LiDAR points that project into the left image\n"
-      "  -h                    this help\n",
+      "  -h, --help            this help\n"
+      "  --version             the tool's name and version\n"
+      "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
       program, kDefaults.seed, kDefaults.beams, kDefaults.baseline, kDefaults.width, kDefaults.height);
 }
 
@@ -112,11 +115,8 @@ void writeFrame(const fs::path& out, const std::string& id, const synth::Frame& 
 
 int run(int argc, char** argv) {
   const Arguments args(argc, argv, {"out", "n", "seed", "weather", "beams", "baseline", "width", "height"},
-                       {"h", "help", "third_camera", "lidar_in_camera_view"});
-  if (args.has("h") || args.has("help")) {
-    printHelp(argv[0]);
-    return 0;
-  }
+                       {"third_camera", "lidar_in_camera_view"});
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_synth", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
     throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
   }

@@ -19,6 +19,8 @@
 #include "bench_frame.hpp"
 #include "bench_system.hpp"
 #include "bench_timing.hpp"
+#include "common/arguments.hpp"
+#include "common/help_version.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
 #ifdef LIDAR_SGM_BENCH_HAVE_IO
@@ -50,7 +52,6 @@ struct Options {
   std::string dataRoot;  ///< empty: $LIDAR_SGM_DATA, else the ../shared/data found at configure time
   std::string left, right, lidar;
   bool growth = false;
-  bool help = false;
 };
 
 void printUsage(const char* program) {
@@ -67,20 +68,11 @@ void printUsage(const char* program) {
       "  -configs LIST           comma list of fused,stereo,lidar,paths8,half (default all)\n"
       "  -num_disparities N      (default 128)\n"
       "  -paths 4|8              SGM paths of every configuration but paths8 (default 4)\n"
-      "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n",
+      "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n"
+      "  -h, --help              this help\n"
+      "  --version               the tool's name and version\n"
+      "Every option also takes the GNU spelling: --runs 5, --runs=5.\n",
       program, kKittiFrame, LIDAR_SGM_SHARED_DATA);
-}
-
-int parseInt(const std::string& option, const std::string& value) {
-  std::size_t used = 0;
-  int parsed = 0;
-  try {
-    parsed = std::stoi(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != value.size()) throw std::invalid_argument(option + " needs an integer, got '" + value + "'");
-  return parsed;
 }
 
 std::vector<std::string> splitCommas(const std::string& list) {
@@ -93,29 +85,33 @@ std::vector<std::string> splitCommas(const std::string& list) {
   return items;
 }
 
-Options parseOptions(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string key = argv[i];
-    if (key == "-h" || key == "--help") { o.help = true; continue; }
-    if (key == "-synthetic") { o.synthetic = true; continue; }
-    if (key == "-growth") { o.growth = true; continue; }
-    if (i + 1 >= argc) throw std::invalid_argument("unknown option or missing value: " + key + " (-h for help)");
-    const std::string value = argv[++i];
-    if (key == "-backend") o.backend = value;
-    else if (key == "-threads") o.threads = parseInt(key, value);
-    else if (key == "-runs") o.runs = parseInt(key, value);
-    else if (key == "-configs") o.configs = splitCommas(value);
-    else if (key == "-num_disparities") o.numDisparities = parseInt(key, value);
-    else if (key == "-paths") o.paths = parseInt(key, value);
-    else if (key == "-width") o.width = parseInt(key, value);
-    else if (key == "-height") o.height = parseInt(key, value);
-    else if (key == "-data") o.dataRoot = value;
-    else if (key == "-left") o.left = value;
-    else if (key == "-right") o.right = value;
-    else if (key == "-lidar") o.lidar = value;
-    else throw std::invalid_argument("unknown option: " + key + " (-h for help)");
+/// The options the bench takes (-h and --version are every tool's).
+apps::Arguments parseArguments(int argc, char** argv) {
+  return apps::Arguments(argc, argv,
+                         {"backend", "threads", "runs", "configs", "num_disparities", "paths", "width", "height",
+                          "data", "left", "right", "lidar"},
+                         {"synthetic", "growth"});
+}
+
+Options optionsFrom(const apps::Arguments& args) {
+  if (!args.positionals().empty()) {
+    throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
   }
+  Options o;
+  o.backend = args.text("backend", o.backend);
+  o.threads = args.integer("threads", o.threads);
+  o.runs = args.integer("runs", o.runs);
+  o.configs = splitCommas(args.text("configs", ""));
+  o.numDisparities = args.integer("num_disparities", o.numDisparities);
+  o.paths = args.integer("paths", o.paths);
+  o.width = args.integer("width", o.width);
+  o.height = args.integer("height", o.height);
+  o.dataRoot = args.text("data", o.dataRoot);
+  o.left = args.text("left", o.left);
+  o.right = args.text("right", o.right);
+  o.lidar = args.text("lidar", o.lidar);
+  o.synthetic = args.has("synthetic");
+  o.growth = args.has("growth");
   if (o.runs < 1) throw std::invalid_argument("-runs must be at least 1");
   if (o.width < 16 || o.height < 16) throw std::invalid_argument("-width and -height must be at least 16");
   const int filesGiven = !o.left.empty() + !o.right.empty() + !o.lidar.empty();
@@ -372,12 +368,11 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   try {
-    const lidar_sgm::bench::Options options = lidar_sgm::bench::parseOptions(argc, argv);
-    if (options.help) {
-      lidar_sgm::bench::printUsage(argv[0]);
+    const lidar_sgm::apps::Arguments args = lidar_sgm::bench::parseArguments(argc, argv);
+    if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_bench", [&] { lidar_sgm::bench::printUsage(argv[0]); })) {
       return 0;
     }
-    return lidar_sgm::bench::run(options);
+    return lidar_sgm::bench::run(lidar_sgm::bench::optionsFrom(args));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lidar_sgm_bench: %s\n", e.what());
     return 1;

@@ -6,16 +6,19 @@
 // fused LiDAR-SGM then score. Real KITTI frames (no GT): the photometric error
 // |L(u, v) - R(u - d, v)| of the points each setting keeps and drops.
 //
-//   build/bench/occlusion_filter_study [-seeds N] [-settings K (the first K filter settings)] [-kitti DIR]
+//   build/bench/occlusion_filter_study [-seeds N] [-settings K (the first K filter settings)] [-kitti DIR] [-h]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
+#include "common/arguments.hpp"
+#include "common/help_version.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
@@ -198,19 +201,44 @@ void kitti(const std::string& dir) {
   }
 }
 
+void printHelp(const char* program) {
+  std::printf(
+      "Syntax is: %s [options]\n"
+      "Does dropping the LiDAR points hidden from the camera help? Synthetic frames with exact GT, and\n"
+      "optionally real KITTI frames (photometric error of the points kept and dropped).\n"
+      "where options are:\n"
+      "  -seeds N        synthetic frames, 0 = none (default: 6)\n"
+      "  -settings K     only the first K filter settings (default: all)\n"
+      "  -kitti DIR      also the real KITTI frames under DIR (default: none)\n"
+      "  -h, --help      this help\n"
+      "  --version       the tool's name and version\n",
+      program);
+}
+
+int run(int argc, char** argv) {
+  const lidar_sgm::apps::Arguments args(argc, argv, {"seeds", "settings", "kitti"}, {});
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "occlusion_filter_study", [&] { printHelp(argv[0]); })) return 0;
+  if (!args.positionals().empty()) {
+    throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
+  }
+  const int seeds = args.integer("seeds", 6);
+  const int settingCount = args.integer("settings", 100);
+  if (seeds < 0) throw std::invalid_argument("option -seeds: must be >= 0");
+  if (settingCount < 1) throw std::invalid_argument("option -settings: must be >= 1");
+  const std::string kittiDir = args.text("kitti", "");
+  if (!kittiDir.empty()) kitti(kittiDir);
+  if (seeds > 0) synthetic(seeds, static_cast<std::size_t>(settingCount));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  int seeds = 6;
-  std::size_t settingCount = 100;
-  std::string kittiDir;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "-seeds") seeds = std::atoi(argv[i + 1]);
-    if (a == "-kitti") kittiDir = argv[i + 1];
-    if (a == "-settings") settingCount = static_cast<std::size_t>(std::atoi(argv[i + 1]));
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "\nError: %s\n", e.what());
+    return 1;
   }
-  if (!kittiDir.empty()) kitti(kittiDir);
-  if (seeds > 0) synthetic(seeds, settingCount);
-  return 0;
 }

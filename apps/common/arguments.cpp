@@ -5,34 +5,60 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include <CLI/CLI.hpp>
+
+#include "common/pcl_style_options.hpp"
+
 namespace lidar_sgm {
 namespace apps {
 namespace {
 
-// "-alpha" is an option, "-3" (a negative number) and "-" are not.
+// "-alpha" and "--alpha" are options, "-3" (a negative number) and "-" are not.
 bool looksLikeOption(const std::string& token) {
-  return token.size() > 1 && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[1]));
+  const std::size_t start = token.rfind("--", 0) == 0 ? 2 : 1;
+  return token.size() > start && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[start]));
 }
 
 }  // namespace
 
 Arguments::Arguments(int argc, const char* const* argv, const std::set<std::string>& valueOptions,
                      const std::set<std::string>& flagOptions) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string token = argv[i];
-    if (!looksLikeOption(token)) {
-      positionals_.push_back(token);
-      continue;
-    }
-    const std::string name = token.substr(token[1] == '-' ? 2 : 1);
-    if (flagOptions.count(name)) {
-      flags_.insert(name);
-    } else if (valueOptions.count(name)) {
-      if (i + 1 >= argc) throw std::invalid_argument("option -" + name + " needs a value");
-      values_[name] = argv[++i];
-    } else {
-      throw std::invalid_argument("unknown option " + token + " (see -h)");
-    }
+  CLI::App app;
+  // The tools print their own help (PCL style, every default); here -h is a flag like any other.
+  app.set_help_flag();
+  app.allow_extras();  // reported below, in our words
+  CLI::Option* help = app.add_flag("-h,--help");
+  CLI::Option* version = app.add_flag("--version");
+  std::map<std::string, std::string> values;
+  std::map<std::string, CLI::Option*> flags;
+  for (const std::string& name : valueOptions) {
+    app.add_option("--" + name, values[name])->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+  for (const std::string& name : flagOptions) flags[name] = app.add_flag("--" + name);
+  app.add_option("files", positionals_);
+
+  std::vector<std::string> arguments(argv + 1, argv + argc);
+  arguments = toCli11Arguments(app, arguments);
+  // CLI11 parses a reversed vector (it pops from the back).
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  help_ = help->count() > 0;
+  version_ = version->count() > 0;
+  if (help_ || version_) return;  // those answer whatever else the line holds
+  for (const std::string& extra : app.remaining()) {
+    if (extra == "--") continue;  // CLI11 lists the end-of-options mark among the extras
+    if (looksLikeOption(extra)) throw std::invalid_argument("unknown option " + extra + " (see -h)");
+    throw std::invalid_argument("unexpected argument '" + extra + "' (see -h)");
+  }
+  for (const std::string& name : valueOptions) {
+    if (app.get_option("--" + name)->count() > 0) values_[name] = values[name];
+  }
+  for (const auto& [name, option] : flags) {
+    if (option->count() > 0) flags_.insert(name);
   }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// PCL-tool-style command lines: positional files and single-dash options ("-alpha 0.7", "-h").
+// PCL-tool-style command lines: positional files and single-dash options ("-alpha 0.7", "-h"),
+// parsed by CLI11; "--alpha 0.7", "--alpha=0.7", "--help" and "--version" work too.
 
 #include <map>
 #include <set>
@@ -11,13 +12,18 @@ namespace apps {
 
 class Arguments {
  public:
-  /// `valueOptions` take one value, `flagOptions` none. Throws std::invalid_argument for an
-  /// unknown option or an option without its value.
+  /// `valueOptions` take one value, `flagOptions` none (names without dashes; the last of a
+  /// repeated option wins). -h, -help, --help and --version are always known. Throws
+  /// std::invalid_argument for an unknown option or an option without its value.
   Arguments(int argc, const char* const* argv, const std::set<std::string>& valueOptions,
             const std::set<std::string>& flagOptions);
 
   const std::vector<std::string>& positionals() const { return positionals_; }
   bool has(const std::string& name) const { return values_.count(name) > 0 || flags_.count(name) > 0; }
+  /// -h / -help / --help: the tool prints its help and does nothing else.
+  bool helpRequested() const { return help_; }
+  /// --version (or -version): the tool prints its name and version and does nothing else.
+  bool versionRequested() const { return version_; }
 
   /// The option's value, or `fallback` when absent. A malformed number throws
   /// std::invalid_argument naming the option and the text.
@@ -29,6 +35,8 @@ class Arguments {
   std::vector<std::string> positionals_;
   std::map<std::string, std::string> values_;
   std::set<std::string> flags_;
+  bool help_ = false;
+  bool version_ = false;
 };
 
 }  // namespace apps

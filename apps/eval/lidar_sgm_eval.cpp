@@ -1,6 +1,7 @@
 // lidar_sgm_eval: the evaluation protocols of EVALUATION.md (P1: GT frames with simulated LiDAR,
 // P2: real LiDAR with every 4th ring held out, P3: the project's synthetic scenes), every method
 // side by side, an alpha sweep per group of frames, pictures, markdown tables and a JSON file.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "common/arguments.hpp"
+#include "common/help_version.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
@@ -16,6 +18,7 @@
 #include "lidar_sgm/eval/groups.hpp"
 #include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/eval/report.hpp"
+#include "lidar_sgm/version.hpp"
 
 namespace fs = std::filesystem;
 using namespace lidar_sgm;
@@ -25,12 +28,13 @@ namespace {
 
 void printHelp(const char* program) {
   std::printf(
-      "Syntax is: %s [options]\n"
+      "Syntax is: %s -out DIR [options]\n"
       "Runs the evaluation protocols of EVALUATION.md and writes tables, plots, pictures and JSON.\n"
+      "The whole plan takes minutes (BENCHMARK.md); it is printed before anything runs.\n"
       "where options are:\n"
       "  -data ROOT         third-party data root (default: $LIDAR_SGM_DATA, else ../shared/data, relative to\n"
       "                     the working directory)\n"
-      "  -out DIR           output folder (default: out/eval)\n"
+      "  -out DIR           output folder, required (the documented run: -out out/eval)\n"
       "  -protocols LIST    comma-separated subset of P1,P2,P3 (default: P1,P2,P3)\n"
       "  -synth_frames N    synthetic frames per P3 set (default: 10, seeds 100..)\n"
       "  -synth_size WxH    synthetic frame size (default: 1242x375)\n"
@@ -44,23 +48,36 @@ void printHelp(const char* program) {
       "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n"
       "  -no_pictures       skip the per-frame pictures\n"
       "  and every SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the LiDAR-SGM methods\n"
-      "  -h                 this help\n",
+      "  -h, --help         this help\n"
+      "  --version          the tool's name and version\n"
+      "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
       program);
 }
 
-/// A comma-separated option value as its items.
-std::vector<std::string> listOption(const std::string& text) {
+/// The comma-separated `option`'s items, each checked against `known` (its default).
+std::vector<std::string> listOption(const apps::Arguments& args, const std::string& option, const std::string& known) {
   std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) items.push_back(item);
+  std::stringstream stream(args.text(option, known));
+  for (std::string item; std::getline(stream, item, ',');) {
+    if (("," + known + ",").find("," + item + ",") == std::string::npos) {
+      throw std::invalid_argument("option -" + option + ": unknown item '" + item + "' (known: " + known + ")");
+    }
+    items.push_back(item);
+  }
   return items;
+}
+
+std::string joinedText(const std::vector<std::string>& items, const char* separator) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : separator) + item;
+  return text;
 }
 
 GroupSelection selectionFrom(const apps::Arguments& args, const std::string& root) {
   GroupSelection selection;
   selection.dataRoot = root;
-  selection.protocols = listOption(args.text("protocols", "P1,P2,P3"));
-  selection.p3Sets = listOption(args.text("p3_sets", "clear64,rain64,clear128"));
+  selection.protocols = listOption(args, "protocols", "P1,P2,P3");
+  selection.p3Sets = listOption(args, "p3_sets", "clear64,rain64,clear128");
   selection.synthFrames = args.integer("synth_frames", 10);
   const std::string size = args.text("synth_size", "1242x375");
   if (std::sscanf(size.c_str(), "%dx%d", &selection.synthWidth, &selection.synthHeight) != 2) {
@@ -69,18 +86,48 @@ GroupSelection selectionFrom(const apps::Arguments& args, const std::string& roo
   return selection;
 }
 
+/// What the run will do, before it loads anything: it takes minutes, so it never starts unseen.
+void printPlan(const GroupSelection& selection, const std::string& out, const GroupRunOptions& run, bool pictures) {
+  const auto has = [](const std::vector<std::string>& items, const char* item) {
+    return std::find(items.begin(), items.end(), item) != items.end();
+  };
+  std::vector<std::string> methods;
+  for (const Method& m : baseMethods()) methods.push_back(displayName(m));
+  std::vector<std::string> sweep;
+  for (double a : run.alphas) sweep.push_back(std::to_string(a).substr(0, 4));
+  std::printf("lidar_sgm_eval %s: the plan\n", versionString());
+  std::printf("  protocols: %s\n", joinedText(selection.protocols, ", ").c_str());
+  const char* root = selection.dataRoot.c_str();
+  if (has(selection.protocols, "P1")) std::printf("    P1: every GT frame under %s, simulated 64-beam LiDAR\n", root);
+  if (has(selection.protocols, "P2")) std::printf("    P2: the real KITTI scans under %s, every 4th ring held out\n", root);
+  if (has(selection.protocols, "P3")) {
+    std::printf("    P3: synthetic sets %s, %d frames each (seeds 100..), %dx%d\n",
+                joinedText(selection.p3Sets, ", ").c_str(), selection.synthFrames, selection.synthWidth,
+                selection.synthHeight);
+  }
+  const bool threeCameras = has(selection.protocols, "P3") && has(selection.p3Sets, "clear64");
+  std::printf("  methods:   %s; LiDAR-SGM at alpha %s%s\n", joinedText(methods, ", ").c_str(),
+              joinedText(sweep, ", ").c_str(), threeCameras ? "; on P3 clear64 also the three-camera methods" : "");
+  std::printf("  matcher:   backend %s, scale %g, %d threads in all\n", toString(resolve(run.backend)).c_str(),
+              run.base.scale, run.threads);
+  std::printf("  outputs:   %s/results.md, %s/results.json, %s/plots/%s\n", out.c_str(), out.c_str(), out.c_str(),
+              pictures ? (", " + out + "/pictures/").c_str() : "");
+  std::fflush(stdout);
+}
+
 int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
       apps::joined(apps::sgmValueOptions(),
                    {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
-      apps::joined(apps::sgmFlagOptions(), {"h", "help", "no_pictures"}));
-  if (args.has("h") || args.has("help")) {
-    printHelp(argv[0]);
-    return 0;
+      apps::joined(apps::sgmFlagOptions(), {"no_pictures"}));
+  if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
+  if (!args.positionals().empty()) {
+    throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
   }
   const std::string root = resolveDataRoot(args.text("data", ""));
-  const std::string out = args.text("out", "out/eval");
+  // Required: the run takes minutes and writes a folder, so it never starts by accident.
+  const std::string out = args.text("out", "");
   // The matcher parameters of every LiDAR-SGM method (alpha is the method's; numDisparities the
   // frame's; threads are shared out by runGroup).
   const Parameters base = apps::parametersFrom(args);
@@ -93,6 +140,12 @@ int run(int argc, char** argv) {
   runOptions.threads = threads;
   runOptions.base = base;
   runOptions.backend = backend;
+  const GroupSelection selection = selectionFrom(args, root);
+  printPlan(selection, out.empty() ? "DIR" : out, runOptions, !args.has("no_pictures"));
+  if (out.empty()) {
+    throw std::invalid_argument("nothing run: -out DIR is required, the folder for the results above "
+                                "(e.g. -out out/eval; -h for every option)");
+  }
   fs::create_directories(out + "/plots");
   const std::string pictures = args.has("no_pictures") ? "" : out + "/pictures";
   if (!pictures.empty()) fs::create_directories(pictures);
@@ -101,10 +154,13 @@ int run(int argc, char** argv) {
   apps::Timer loadTimer;
   std::printf("Loading frames from %s", root.c_str());
   std::fflush(stdout);
-  const std::vector<FrameGroup> groups = loadGroups(selectionFrom(args, root));
+  const std::vector<FrameGroup> groups = loadGroups(selection);
   std::size_t frames = 0;
   for (const FrameGroup& g : groups) frames += g.frames.size();
   std::printf(" [done, %.0f ms : %zu groups, %zu frames]\n", loadTimer.elapsedMs(), groups.size(), frames);
+  for (const FrameGroup& g : groups) {
+    std::printf("  %s: %zu frames, %zu methods + the alpha sweep\n", g.name.c_str(), g.frames.size(), g.methods.size());
+  }
   if (frames == 0) throw std::runtime_error("no frame found under '" + root + "'");
 
   std::vector<ProtocolResult> results;

@@ -77,6 +77,7 @@ ProtocolResult runGroup(const FrameGroup& group, const GroupRunOptions& options)
   std::vector<FrameRun> runs(group.frames.size());
   std::atomic<std::size_t> next{0};
   std::mutex printMutex;
+  std::size_t done = 0;  // progress, counted under printMutex
   std::vector<std::string> errors(group.frames.size());
   auto worker = [&]() {
     for (std::size_t i = next++; i < group.frames.size(); i = next++) {
@@ -86,8 +87,8 @@ ProtocolResult runGroup(const FrameGroup& group, const GroupRunOptions& options)
         if (!options.picturesDir.empty()) writeFramePictures(options.picturesDir, group.frames[i], runs[i].disparities);
         runs[i].disparities.clear();  // the pictures are written; the memory is not needed
         std::lock_guard<std::mutex> lock(printMutex);
-        std::printf("  %s / %s [done, %.0f ms]\n", group.frames[i].dataset.c_str(), group.frames[i].name.c_str(),
-                    millisecondsSince(start));
+        std::printf("  [%zu/%zu] %s / %s [done, %.0f ms]\n", ++done, group.frames.size(),
+                    group.frames[i].dataset.c_str(), group.frames[i].name.c_str(), millisecondsSince(start));
         std::fflush(stdout);
       } catch (const std::exception& e) {
         errors[i] = group.frames[i].name + ": " + e.what();

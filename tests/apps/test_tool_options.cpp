@@ -1,0 +1,147 @@
+// Every tool's command line as a user types it: -h, --help and --version answer and do nothing
+// else; a bad line exits 1 with a one-line message naming the problem, never an abort.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "lidar_sgm/version.hpp"
+
+namespace lidar_sgm {
+namespace {
+
+struct RunResult {
+  int exitCode;  ///< -1 when the tool did not exit normally (an abort, a signal)
+  std::string output;  ///< stdout + stderr
+};
+
+RunResult run(const std::string& tool, const std::string& arguments) {
+  const std::string command = tool + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+/// A tool, and for each kind of bad line one that reaches the parser (some tools check their
+/// files before their numbers) with the message it must print.
+struct Tool {
+  const char* name;
+  const char* path;
+  const char* missingValue;  ///< an option given last, without its value
+  std::string badNumber;     ///< a line with a non-numeric value
+  const char* badNumberMessage;
+  std::string wrongPositionals;
+  const char* wrongPositionalsMessage;
+};
+
+void PrintTo(const Tool& tool, std::ostream* os) { *os << tool.name; }
+
+std::vector<Tool> builtTools() {
+  std::vector<Tool> tools;
+#ifdef LIDAR_SGM_TOOL_DISPARITY
+  tools.push_back({"lidar_sgm_disparity", LIDAR_SGM_TOOL_DISPARITY, "-alpha", "l.png r.png o.png -paths four",
+                   "option -paths: 'four' is not an integer", "l.png", "expected LEFT.png [RIGHT.png] OUT.png, got 1"});
+#endif
+#ifdef LIDAR_SGM_TOOL_SYNTH
+  tools.push_back({"lidar_sgm_synth", LIDAR_SGM_TOOL_SYNTH, "-out", "-out never_written -n two",
+                   "option -n: 'two' is not an integer", "stray", "unexpected argument 'stray'"});
+#endif
+#ifdef LIDAR_SGM_TOOL_DENSIFY
+  tools.push_back({"lidar_sgm_densify", LIDAR_SGM_TOOL_DENSIFY, "-calib", "in.bin out.pcd -calib c.txt -alpha high",
+                   "option -alpha: 'high' is not a finite number", "in.bin", "expected INPUT and OUTPUT, got 1"});
+#endif
+#ifdef LIDAR_SGM_TOOL_EVAL
+  tools.push_back({"lidar_sgm_eval", LIDAR_SGM_TOOL_EVAL, "-out", "-synth_frames ten",
+                   "option -synth_frames: 'ten' is not an integer", "stray", "unexpected argument 'stray'"});
+#endif
+#ifdef LIDAR_SGM_TOOL_BENCH
+  tools.push_back({"lidar_sgm_bench", LIDAR_SGM_TOOL_BENCH, "-runs", "-runs abc", "option -runs: 'abc' is not an integer",
+                   "stray", "unexpected argument 'stray'"});
+#endif
+#ifdef LIDAR_SGM_TOOL_OCCLUSION_STUDY
+  tools.push_back({"occlusion_filter_study", LIDAR_SGM_TOOL_OCCLUSION_STUDY, "-seeds", "-seeds many",
+                   "option -seeds: 'many' is not an integer", "stray", "unexpected argument 'stray'"});
+#endif
+  return tools;
+}
+
+class ToolOptions : public ::testing::TestWithParam<Tool> {};
+
+TEST_P(ToolOptions, HelpInEverySpellingPrintsTheOptionsAndDoesNothingElse) {
+  for (const char* help : {"-h", "--help", "-help"}) {
+    const RunResult r = run(GetParam().path, help);
+    EXPECT_EQ(r.exitCode, 0) << help << ":\n" << r.output;
+    EXPECT_NE(r.output.find("-h, --help"), std::string::npos) << help << ":\n" << r.output;
+    EXPECT_NE(r.output.find("--version"), std::string::npos) << help << ":\n" << r.output;
+    // Every tool's work prints "[done, ...]" lines (loading, matching, timing); help prints none.
+    EXPECT_EQ(r.output.find("[done"), std::string::npos) << help << " did some work:\n" << r.output;
+  }
+}
+
+TEST_P(ToolOptions, HelpWinsOverTheRestOfTheLine) {
+  // The bench would otherwise time frames for seconds, the evaluation run for minutes.
+  const RunResult r = run(GetParam().path, "-runs 1 -out never_written -h");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("[done"), std::string::npos) << r.output;
+}
+
+TEST_P(ToolOptions, VersionPrintsTheToolAndTheLibraryVersion) {
+  for (const char* version : {"--version", "-version"}) {
+    const RunResult r = run(GetParam().path, version);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output, std::string(GetParam().name) + " " + LIDAR_SGM_VERSION_STRING + "\n");
+  }
+}
+
+TEST_P(ToolOptions, UnknownOptionExitsOneNamingIt) {
+  for (const char* option : {"-no_such_option", "--no_such_option"}) {
+    const RunResult r = run(GetParam().path, option);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find(std::string("unknown option ") + option), std::string::npos) << r.output;
+  }
+}
+
+TEST_P(ToolOptions, MissingValueExitsOneNamingTheOption) {
+  const std::string option = GetParam().missingValue;
+  for (const std::string& spelling : {option, "-" + option}) {  // -name and --name
+    const RunResult r = run(GetParam().path, spelling);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("option " + option + " needs a value"), std::string::npos) << r.output;
+  }
+}
+
+TEST_P(ToolOptions, NonNumericValueExitsOneNamingTheOption) {
+  const RunResult r = run(GetParam().path, GetParam().badNumber);
+  EXPECT_EQ(r.exitCode, 1) << r.output;  // 134 was std::stoi's uncaught exception
+  EXPECT_NE(r.output.find(GetParam().badNumberMessage), std::string::npos) << r.output;
+}
+
+TEST_P(ToolOptions, WrongPositionalsExitOne) {
+  const RunResult r = run(GetParam().path, GetParam().wrongPositionals);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find(GetParam().wrongPositionalsMessage), std::string::npos) << r.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryTool, ToolOptions, ::testing::ValuesIn(builtTools()),
+                         [](const ::testing::TestParamInfo<Tool>& tool) { return std::string(tool.param.name); });
+
+#ifdef LIDAR_SGM_TOOL_EVAL
+TEST(EvalToolOptions, WithoutArgumentsPrintsThePlanAndRunsNothing) {
+  const RunResult r = run(LIDAR_SGM_TOOL_EVAL, "");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  for (const char* part : {"protocols: P1, P2, P3", "methods:", "outputs:", "-out DIR is required"}) {
+    EXPECT_NE(r.output.find(part), std::string::npos) << part << " in:\n" << r.output;
+  }
+  EXPECT_EQ(r.output.find("Loading"), std::string::npos) << r.output;
+}
+#endif
+
+}  // namespace
+}  // namespace lidar_sgm
