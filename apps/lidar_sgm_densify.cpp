@@ -15,6 +15,7 @@
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
+#include "common/tool_main.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
@@ -297,11 +298,5 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Our messages name the problem; PCL's own console errors would repeat them.
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "\nError: %s\n", e.what());
-    return 1;
-  }
+  return lidar_sgm::apps::runTool(run, argc, argv);
 }

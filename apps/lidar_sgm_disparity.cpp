@@ -11,6 +11,7 @@
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
+#include "common/tool_main.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 
@@ -149,11 +150,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "\nError: %s\n", e.what());
-    return 1;
-  }
+  return lidar_sgm::apps::runTool(run, argc, argv);
 }

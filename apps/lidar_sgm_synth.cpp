@@ -14,6 +14,7 @@
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
 #include "common/timer.hpp"
+#include "common/tool_main.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/synth/encoding.hpp"
 #include "lidar_sgm/synth/frame.hpp"
@@ -164,11 +165,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "\nError: %s\n", e.what());
-    return 1;
-  }
+  return lidar_sgm::apps::runTool(run, argc, argv);
 }

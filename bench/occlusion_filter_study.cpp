@@ -19,6 +19,7 @@
 
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
+#include "common/tool_main.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
@@ -234,11 +235,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "\nError: %s\n", e.what());
-    return 1;
-  }
+  return lidar_sgm::apps::runTool(run, argc, argv);
 }

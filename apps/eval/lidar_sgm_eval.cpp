@@ -13,6 +13,7 @@
 #include "common/help_version.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
+#include "common/tool_main.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
 #include "lidar_sgm/eval/group_run.hpp"
 #include "lidar_sgm/eval/groups.hpp"
@@ -192,11 +193,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "\nError: %s\n", e.what());
-    return 1;
-  }
+  return lidar_sgm::apps::runTool(run, argc, argv);
 }
