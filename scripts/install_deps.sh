@@ -11,6 +11,7 @@ packages=(
   libhwy-dev                   # the fast cpu backend: SIMD with runtime dispatch (Highway)
   libpcl-dev                   # the PCL class, cloud files, lidar_sgm_densify
   nlohmann-json3-dev           # lidar_sgm_eval's JSON results
+  pkg-config                   # the install test checks lidar_sgm.pc
 )
 
 missing=()
