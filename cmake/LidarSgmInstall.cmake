@@ -28,6 +28,21 @@ if(NOT DEFINED CMAKE_INSTALL_RPATH)
   set(CMAKE_INSTALL_RPATH "$ORIGIN/${_lidar_sgm_bin_to_lib}")
 endif()
 
+# Compiles the backends' object libraries into `target` (the core). They are private and not
+# installed, so the link is build-tree only; in the package, a static core names the backends'
+# own links (Highway, OpenMP) itself, and a shared one has them inside.
+function(lidar_sgm_link_backends target)
+  foreach(backend IN LISTS ARGN)
+    target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:${backend}>)
+    get_target_property(backend_links ${backend} INTERFACE_LINK_LIBRARIES)
+    if(backend_links)
+      foreach(link IN LISTS backend_links)
+        target_link_libraries(${target} PRIVATE $<INSTALL_INTERFACE:${link}>)
+      endforeach()
+    endif()
+  endforeach()
+endfunction()
+
 # Absolute include directories of third-party packages (OpenCV's, PCL's) that the targets name
 # for the build tree: downstream, the dependencies' own imported targets (opencv_core,
 # pcl_common), which the Config finds again, carry them. Exporting the paths would pin the package
@@ -101,7 +116,7 @@ function(lidar_sgm_install_package)
 
   # What the Config must find again for the targets to resolve downstream. A static core carries
   # the fast backend's links (Highway, OpenMP) to whoever links it; a shared one has them inside.
-  # (src/core/CMakeLists.txt names them as $<INSTALL_INTERFACE:...> links; the imported targets
+  # (lidar_sgm_link_backends names them as $<INSTALL_INTERFACE:...> links; the imported targets
   # themselves are visible only in the backend's folder.)
   get_target_property(core_type lidar_sgm_core TYPE)
   get_target_property(core_links lidar_sgm_core LINK_LIBRARIES)
