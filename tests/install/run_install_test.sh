@@ -70,9 +70,11 @@ export PKG_CONFIG_PATH="$(dirname "$pc_file")"
 static=""
 if find "$prefix" -name 'liblidar_sgm_core.a' | grep -q .; then static="--static"; fi
 version="$(pkg-config --modversion lidar_sgm)"
+# A shared core in a prefix the loader does not search: found through the libdir pkg-config names.
+libdir="$(pkg-config --variable=libdir lidar_sgm)"
 # shellcheck disable=SC2046  # pkg-config's output is a list of flags
 "$cxx" -std=c++17 -O1 -DEXPECTED_VERSION="\"$version\"" $(pkg-config --cflags lidar_sgm) \
-  "$here/core_user/main.cpp" -o "$work/core_user_pkgconfig" $(pkg-config $static --libs lidar_sgm)
+  "$here/core_user/main.cpp" -o "$work/core_user_pkgconfig" $(pkg-config $static --libs lidar_sgm) -Wl,-rpath,"$libdir"
 "$work/core_user_pkgconfig"
 
 step "a component that does not exist is reported not found"
