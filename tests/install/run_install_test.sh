@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# The package as a user gets it: installs a build into a temporary prefix (cmake --install), then
+# configures, builds and runs the downstream projects beside this script against that prefix
+# (find_package(lidar_sgm CONFIG REQUIRED COMPONENTS ...)), compiles the core user once more with
+# pkg-config, runs an installed tool, and removes the prefix. Any step failing fails the test.
+#
+# Usage: run_install_test.sh CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL(ON|OFF) SAMPLE_DIR
+# (tests/CMakeLists.txt registers it with ctest, label `install`).
+set -euo pipefail
+if [ $# -ne 6 ]; then
+  echo "usage: $0 CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL SAMPLE_DIR" >&2
+  exit 2
+fi
+cmake_command="$1"
+build_dir="$2"
+config="${3:-Release}"
+cxx="$4"
+have_pcl="$5"
+sample_dir="$6"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+
+work="$(mktemp -d "${TMPDIR:-/tmp}/lidar_sgm_install_test.XXXXXX")"
+trap 'rm -rf "$work"' EXIT
+prefix="$work/prefix"
+
+step() { echo; echo "== $*"; }
+
+step "cmake --install $build_dir --prefix $prefix"
+"$cmake_command" --install "$build_dir" --prefix "$prefix" --config "$config" > "$work/install.log" ||
+  { cat "$work/install.log"; exit 1; }
+(cd "$prefix" && find . -type f | sort | sed 's/^/  /')
+
+# What a user must never get: private headers (src/, the backends' stage contract) or the
+# backends' object libraries as separate things.
+if find "$prefix" -path '*backends*' | grep -q .; then
+  echo "FAILED: the backends are private, but the prefix has:" >&2
+  find "$prefix" -path '*backends*' >&2
+  exit 1
+fi
+for file in include/lidar_sgm/version.hpp include/lidar_sgm/core/matcher.hpp; do
+  [ -f "$prefix/$file" ] || { echo "FAILED: $file is not installed" >&2; exit 1; }
+done
+
+# Configures and builds downstream project $1 against the prefix only, with extra CMake arguments.
+build_downstream() {
+  local name="$1"
+  shift
+  "$cmake_command" -S "$here/$name" -B "$work/build-$name" -DCMAKE_BUILD_TYPE="$config" \
+    -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_PREFIX_PATH="$prefix" "$@"
+  # The package must be the one just installed, not one elsewhere on the machine.
+  local found
+  found="$(grep '^lidar_sgm_DIR:' "$work/build-$name/CMakeCache.txt" | cut -d= -f2-)"
+  case "$found" in
+    "$prefix"/*) ;;
+    *) echo "FAILED: $name found lidar_sgm in '$found', not under $prefix" >&2; exit 1 ;;
+  esac
+  "$cmake_command" --build "$work/build-$name" -j2
+}
+
+step "core user: find_package(lidar_sgm COMPONENTS core) with Eigen, OpenCV and PCL hidden"
+# The core component must not look for any of them (the GPU machine has none).
+build_downstream core_user -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_PCL=ON
+"$work/build-core_user/core_user"
+
+step "core user again, compiled with pkg-config (lidar_sgm.pc)"
+pc_file="$(find "$prefix" -name lidar_sgm.pc | head -n 1)"
+[ -n "$pc_file" ] || { echo "FAILED: lidar_sgm.pc is not installed" >&2; exit 1; }
+export PKG_CONFIG_PATH="$(dirname "$pc_file")"
+static=""
+if find "$prefix" -name 'liblidar_sgm_core.a' | grep -q .; then static="--static"; fi
+version="$(pkg-config --modversion lidar_sgm)"
+# A shared core in a prefix the loader does not search: found through the libdir pkg-config names.
+libdir="$(pkg-config --variable=libdir lidar_sgm)"
+# shellcheck disable=SC2046  # pkg-config's output is a list of flags
+"$cxx" -std=c++17 -O1 -DEXPECTED_VERSION="\"$version\"" $(pkg-config --cflags lidar_sgm) \
+  "$here/core_user/main.cpp" -o "$work/core_user_pkgconfig" $(pkg-config $static --libs lidar_sgm) -Wl,-rpath,"$libdir"
+"$work/core_user_pkgconfig"
+
+step "a component that does not exist is reported not found"
+mkdir -p "$work/bogus"
+cat > "$work/bogus/CMakeLists.txt" <<'EOF'
+cmake_minimum_required(VERSION 3.16)
+project(bogus LANGUAGES CXX)
+find_package(lidar_sgm CONFIG COMPONENTS core bogus)
+if(lidar_sgm_FOUND OR lidar_sgm_bogus_FOUND OR NOT lidar_sgm_core_FOUND)
+  message(FATAL_ERROR "lidar_sgm_FOUND=${lidar_sgm_FOUND} bogus=${lidar_sgm_bogus_FOUND} core=${lidar_sgm_core_FOUND}")
+endif()
+EOF
+"$cmake_command" -S "$work/bogus" -B "$work/build-bogus" -DCMAKE_CXX_COMPILER="$cxx" \
+  -DCMAKE_PREFIX_PATH="$prefix" > "$work/bogus.log" || { cat "$work/bogus.log"; exit 1; }
+
+# A core-only build (no OpenCV) has no lidar_sgm_disparity; a build with PCL has every tool.
+if [ -e "$prefix/bin/lidar_sgm_disparity" ] || [ "$have_pcl" = "ON" ]; then
+  step "installed tools run from the prefix (their libraries found through their RPATH)"
+  for tool in lidar_sgm_disparity lidar_sgm_synth lidar_sgm_densify lidar_sgm_eval; do
+    [ "$have_pcl" = "ON" ] || [ "$tool" = lidar_sgm_disparity ] || [ "$tool" = lidar_sgm_synth ] || continue
+    "$prefix/bin/$tool" -h > /dev/null || { echo "FAILED: $tool -h" >&2; exit 1; }
+  done
+fi
+
+if [ "$have_pcl" = "ON" ]; then
+  step "PCL user: find_package(lidar_sgm COMPONENTS core pipeline io pcl), SGMDensification on $sample_dir"
+  build_downstream pcl_user
+  "$work/build-pcl_user/pcl_user" "$sample_dir"
+else
+  step "PCL user skipped: this build has no PCL"
+fi
+
+echo
+echo "install test: passed"
