@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "backends/common/stages.hpp"
 #include "core/backend_registry.hpp"
+#include "core/baseline_ratio.hpp"
 #include "core/half_scale.hpp"
 
 namespace lidar_sgm {

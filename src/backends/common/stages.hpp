@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "backends/common/cost_volume.hpp"
+#include "core/baseline_ratio.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "backends/common/lidar_cost_table.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
@@ -25,12 +26,6 @@ constexpr int kNoCounterpartCensusCost = kMaxCensusCost / 2;
 
 /// Eq. 5 in fixed point: alpha as an integer weight out of 256.
 inline int alphaWeight(float alpha) { return static_cast<int>(alpha * 256.0f + 0.5f); }
-
-/// Triple-SGM: the up camera's baseline over the stereo baseline, b_up / b, in fixed point
-/// (x65536, rounded). A point of horizontal disparity d has vertical disparity d * ratio16 / 65536.
-inline int baselineRatio16(double baselineRatio) {
-  return static_cast<int>(std::lround(baselineRatio * 65536.0));
-}
 
 /// Triple-SGM: the vertical disparity [rows] of the absolute horizontal disparity `d`,
 /// dv = (d * ratio16 + 32768) >> 16, i.e. d * b_up / b rounded half up (floor, also for d < 0).

@@ -1,0 +1,16 @@
+#pragma once
+// Triple-SGM's baseline ratio in the fixed point the Matcher interface passes to the backends
+// (Matcher::runWithUpCamera's ratio16). Internal to the core; the backends' stage contract
+// (backends/common/stages.hpp) includes it, so the arrow points from the backends to the core.
+
+#include <cmath>
+
+namespace lidar_sgm {
+
+/// Triple-SGM: the up camera's baseline over the stereo baseline, b_up / b, in fixed point
+/// (x65536, rounded). A point of horizontal disparity d has vertical disparity d * ratio16 / 65536.
+inline int baselineRatio16(double baselineRatio) {
+  return static_cast<int>(std::lround(baselineRatio * 65536.0));
+}
+
+}  // namespace lidar_sgm
