@@ -21,7 +21,7 @@ right="$sample/image_3/000000.png"
 
 echo "== Fused LiDAR-SGM (scan + stereo pair) -> dense colored cloud"
 "$densify" "$scan" "$out/dense_fused.pcd" -calib "$calib" -left "$left" -right "$right" \
-  -disparity "$out/fused.png" -color "$out/fused_color.png"
+  -disparity "$out/fused.png" -depth "$out/fused_depth.png" -color "$out/fused_color.png"
 echo
 echo "== LiDAR-only SGM (scan, colored from the left image) -> dense colored cloud"
 "$densify" "$scan" "$out/dense_lidar.pcd" -calib "$calib" -left "$left" \
@@ -36,4 +36,5 @@ echo "  dense_fused.pcd dense_lidar.pcd                  dense XYZRGB clouds, Li
 echo "                                                   view with pcl_viewer from Debian's pcl-tools, or CloudCompare)"
 echo "  fused.png lidar.png stereo.png                   KITTI disparity (uint16, disparity*256, 0 = invalid)"
 echo "  fused_color.png lidar_color.png stereo_color.png color pictures of the disparity (invalid = black)"
-echo "Ground truth for comparison: $sample/disp_gt/000000.png (same format)"
+echo "  fused_depth.png                                  dense depth, KITTI depth-completion format (uint16, metres*256, 0 = none)"
+echo "Ground truth for comparison: $sample/disp_gt/000000.png (same format), $sample/depth_gt/000000.png (depth)"
