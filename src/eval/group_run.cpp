@@ -21,12 +21,18 @@ namespace {
 /// All results of one frame: per method, and the sweep (alpha -> metrics).
 struct FrameRun {
   FrameResult result;
-  std::vector<std::pair<double, DisparityMetrics>> sweep;
+  std::vector<MethodResult> sweep;  ///< the fused method at each alpha of options.alphas
   std::vector<std::pair<Method, Image<std::int16_t>>> disparities;  ///< kept for the pictures
 };
 
-DisparityMetrics score(const EvalFrame& f, const Image<std::int16_t>& d) {
-  return evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view());
+/// Every metric of one method's output on one frame.
+MethodResult score(const Method& method, const EvalFrame& f, const Image<std::int16_t>& d, double milliseconds) {
+  MethodResult result{method, evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view()), milliseconds};
+  CloudScoring scoring;
+  scoring.denseGroundTruth = f.denseGroundTruth;  // P3: a point on the sky is wrong
+  result.cloud = evaluateCloud(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
+  result.depth = evaluateDepth(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
+  return result;
 }
 
 FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, const GroupRunOptions& options,
@@ -36,15 +42,15 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
   run.result.frame = frame.name;
   for (const Method& m : methods) {
     MethodOutput out = runMethod(m, frame, base, options.backend);
-    run.result.methods.push_back({m, score(frame, out.disparity), out.milliseconds});
+    run.result.methods.push_back(score(m, frame, out.disparity, out.milliseconds));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
     MethodOutput out = runMethod(fused, frame, base, options.backend);
-    run.sweep.emplace_back(alpha, score(frame, out.disparity));
+    run.sweep.push_back(score(fused, frame, out.disparity, out.milliseconds));
     if (std::abs(alpha - kPaperAlpha) < 1e-9) {
-      run.result.methods.push_back({fused, run.sweep.back().second, out.milliseconds});
+      run.result.methods.push_back(run.sweep.back());
       run.disparities.emplace_back(fused, std::move(out.disparity));
     }
   }
@@ -108,13 +114,14 @@ ProtocolResult runGroup(const FrameGroup& group, const GroupRunOptions& options)
   AlphaSweep sweep;
   for (std::size_t a = 0; a < options.alphas.size(); ++a) {
     std::vector<DisparityMetrics> perFrame;
-    for (const FrameRun& r : runs) perFrame.push_back(r.sweep[a].second);
+    for (const FrameRun& r : runs) perFrame.push_back(r.sweep[a].metrics);
     sweep.medians.emplace_back(options.alphas[a], medianOver(perFrame));
   }
   const std::size_t best = bestAlphaIndex(sweep.medians);
   for (FrameRun& run : runs) {
     FrameResult frame = std::move(run.result);
-    MethodResult bestResult{{MethodKind::FusedSgm, options.alphas[best]}, run.sweep[best].second, 0.0};
+    MethodResult bestResult = run.sweep[best];
+    bestResult.milliseconds = 0.0;  // the same run as the fused method at its alpha: not timed twice
     bestResult.bestAlpha = true;
     frame.methods.push_back(bestResult);
     result.frames.push_back(std::move(frame));

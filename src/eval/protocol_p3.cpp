@@ -77,6 +77,7 @@ std::vector<EvalFrame> loadP3(const P3Options& options) {
       frame.upBaselineRatio = rendered.rig.thirdCameraOffset / rendered.rig.baseline;
     }
     frame.groundTruth = rendered.disparity;
+    frame.denseGroundTruth = true;  // the renderer gives every pixel a depth; 0 is a ray that hit nothing (sky)
 
     const geometry::StereoCalibration calibration = writtenCalibration(rendered.rig, options.thirdCamera);
     std::vector<Eigen::Vector3f> points;

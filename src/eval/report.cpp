@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "report_cloud.hpp"
+
 namespace lidar_sgm {
 namespace eval {
 namespace fs = std::filesystem;
@@ -49,17 +51,20 @@ std::string metricCells(const DisparityMetrics& m) {
 constexpr const char* kMetricHeader = "correct % | RMSE px | D1 % | density %";
 constexpr const char* kMetricAlignment = "---: | ---: | ---: | ---:";
 
-void appendFrameTable(std::ostringstream& out, const ProtocolResult& result) {
-  out << "| frame | method | " << kMetricHeader << " |\n";
-  out << "| --- | --- | " << kMetricAlignment << " |\n";
+/// One row per frame x method, then one "median" row per method: `cells` gives a row's metric
+/// cells from a MethodResult (the same layout for the disparity, cloud and depth tables).
+template <typename Cells>
+void appendFrameTable(std::ostringstream& out, const ProtocolResult& result, const std::vector<MethodResult>& medians,
+                      const char* header, const char* alignment, Cells cells) {
+  out << "| frame | method | " << header << " |\n";
+  out << "| --- | --- | " << alignment << " |\n";
   for (const FrameResult& frame : result.frames) {
     for (const MethodResult& method : frame.methods) {
-      out << "| " << cell(frameName(frame)) << " | " << cell(label(method)) << " | " << metricCells(method.metrics)
-          << " |\n";
+      out << "| " << cell(frameName(frame)) << " | " << cell(label(method)) << " | " << cells(method) << " |\n";
     }
   }
-  for (const MethodResult& median : methodMedians(result)) {
-    out << "| median | " << cell(label(median)) << " | " << metricCells(median.metrics) << " |\n";
+  for (const MethodResult& median : medians) {
+    out << "| median | " << cell(label(median)) << " | " << cells(median) << " |\n";
   }
 }
 
@@ -81,6 +86,8 @@ nlohmann::json metricsJson(const DisparityMetrics& m) {
 
 nlohmann::json methodJson(const MethodResult& method) {
   nlohmann::json entry = metricsJson(method.metrics);
+  entry["cloud"] = cloudJson(method.cloud);
+  entry["depth"] = depthJson(method.depth);
   entry["method"] = methodId(method.method.kind);
   if (method.method.usesAlpha()) entry["alpha"] = method.method.alpha;
   entry["best_alpha"] = method.bestAlpha;
@@ -176,6 +183,8 @@ std::string label(const MethodResult& result) {
 std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
   std::vector<MethodResult> entries;
   std::vector<std::vector<DisparityMetrics>> metrics;
+  std::vector<std::vector<CloudMetrics>> clouds;
+  std::vector<std::vector<DepthMetrics>> depths;
   std::vector<std::vector<double>> milliseconds;
   for (const FrameResult& frame : result.frames) {
     for (const MethodResult& method : frame.methods) {
@@ -187,14 +196,20 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
       if (found == entries.end()) {
         entries.push_back(method);
         metrics.emplace_back();
+        clouds.emplace_back();
+        depths.emplace_back();
         milliseconds.emplace_back();
       }
       metrics[index].push_back(method.metrics);
+      clouds[index].push_back(method.cloud);
+      depths[index].push_back(method.depth);
       milliseconds[index].push_back(method.milliseconds);
     }
   }
   for (std::size_t i = 0; i < entries.size(); ++i) {
     entries[i].metrics = medianOver(metrics[i]);
+    entries[i].cloud = medianCloud(clouds[i]);
+    entries[i].depth = medianDepth(depths[i]);
     entries[i].milliseconds = medianOf(milliseconds[i]);
   }
   return entries;
@@ -202,7 +217,16 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
 
 std::string markdownTable(const ProtocolResult& result) {
   std::ostringstream out;
-  appendFrameTable(out, result);
+  const std::vector<MethodResult> medians = methodMedians(result);
+  appendFrameTable(out, result, medians, kMetricHeader, kMetricAlignment,
+                   [](const MethodResult& m) { return metricCells(m.metrics); });
+  // Points within max(0.1 m, tau * z_gt) of the GT, up to 80 m; see cloud_metrics.hpp.
+  out << "\nCloud: precision, completeness and F-score at tau 5 % and 3 % (points up to 80 m)\n\n";
+  appendFrameTable(out, result, medians, kCloudHeader, kCloudAlignment,
+                   [](const MethodResult& m) { return cloudCells(m.cloud); });
+  out << "\nDepth: KITTI depth-completion metrics over GT pixels with an estimate (up to 80 m)\n\n";
+  appendFrameTable(out, result, medians, kDepthHeader, kDepthAlignment,
+                   [](const MethodResult& m) { return depthCells(m.depth); });
   for (const AlphaSweep& sweep : result.sweeps) appendSweepTable(out, sweep);
   return out.str();
 }

@@ -217,6 +217,7 @@ TEST_F(ProtocolP1, FramesPerDatasetSortedAndWellFormed) {
   for (const EvalFrame& f : *frames_) {
     expectWellFormed(f);
     EXPECT_EQ(f.protocol, "P1");
+    EXPECT_FALSE(f.denseGroundTruth);  // sparse GT: a pixel without GT was not measured
     EXPECT_TRUE(f.up.empty());
     const auto [lo, hi] = gtRange(f);
     const double gtShare = ratio(gtPixels(f), pixels(f));
@@ -281,6 +282,7 @@ TEST(ProtocolP2, RingAndRowHoldOut) {
     expectWellFormed(f);
     SCOPED_TRACE(f.dataset + "/" + f.name);
     EXPECT_EQ(f.protocol, "P2");
+    EXPECT_FALSE(f.denseGroundTruth);  // held-out rings: sparse
     const auto [lo, hi] = gtRange(f);
     EXPECT_GE(lo, 0.5);
     EXPECT_LE(hi, 200.0);
@@ -345,6 +347,7 @@ TEST_P(ProtocolP3, SmallFrame) {
   const EvalFrame& f = frames[0];
   expectWellFormed(f);
   EXPECT_EQ(f.protocol, "P3");
+  EXPECT_TRUE(f.denseGroundTruth);  // GT 0 is sky: a point there is wrong
   EXPECT_EQ(f.dataset, p3DatasetName(o));
   EXPECT_EQ(f.name, "000100");
   EXPECT_EQ(f.left.cols, 310);

@@ -48,6 +48,46 @@ TEST(MedianOver, OddAndEvenCounts) {
   EXPECT_EQ(medianOver({}).gtPixels, 0);
 }
 
+CloudMetrics cloud(double precision5, double completeness5, double f5) {
+  CloudMetrics m;
+  m.points = 10;
+  m.gtPixels = 20;
+  m.tau5 = {precision5, completeness5, f5};
+  m.tau3 = {precision5 / 2, completeness5 / 2, f5 / 2};
+  return m;
+}
+
+DepthMetrics depth(double rmseMm, double maeMm, double irmsePerKm, double imaePerKm, double density) {
+  DepthMetrics m;
+  m.rmseMm = rmseMm;
+  m.maeMm = maeMm;
+  m.irmsePerKm = irmsePerKm;
+  m.imaePerKm = imaePerKm;
+  m.density = density;
+  m.gtPixels = 30;
+  m.estimatedPixels = 15;
+  return m;
+}
+
+TEST(MedianCloudAndDepth, PerFieldMediansAndSummedCounts) {
+  const CloudMetrics c = medianCloud({cloud(0.9, 0.5, 0.6), cloud(0.7, 0.8, 0.75), cloud(0.8, 0.6, 0.7)});
+  EXPECT_DOUBLE_EQ(c.tau5.precision, 0.8);
+  EXPECT_DOUBLE_EQ(c.tau5.completeness, 0.6);
+  EXPECT_DOUBLE_EQ(c.tau5.fScore, 0.7);  // the median F, not the F of the medians
+  EXPECT_DOUBLE_EQ(c.tau3.precision, 0.4);
+  EXPECT_EQ(c.points, 30);
+  EXPECT_EQ(c.gtPixels, 60);
+  const DepthMetrics d = medianDepth({depth(1000, 300, 3, 1, 0.9), depth(2000, 100, 5, 2, 0.5)});
+  EXPECT_DOUBLE_EQ(d.rmseMm, 1500.0);
+  EXPECT_DOUBLE_EQ(d.maeMm, 200.0);
+  EXPECT_DOUBLE_EQ(d.irmsePerKm, 4.0);
+  EXPECT_DOUBLE_EQ(d.imaePerKm, 1.5);
+  EXPECT_DOUBLE_EQ(d.density, 0.7);
+  EXPECT_EQ(d.estimatedPixels, 30);
+  EXPECT_EQ(medianCloud({}).points, 0);
+  EXPECT_EQ(medianDepth({}).gtPixels, 0);
+}
+
 /// Two frames x two methods, and one sweep.
 ProtocolResult tinyProtocol() {
   ProtocolResult p;
@@ -62,6 +102,10 @@ ProtocolResult tinyProtocol() {
                       {{fused, metrics(0.94, 0.7, 0.03, 0.99), 13.5},
                        {sgbm, metrics(0.82, 1.35, 0.13, 0.92), 31.0}}});
   p.sweeps.push_back({MethodKind::FusedSgm, {{0.0, metrics(0.9, 1.0, 0.05, 0.97)}, {0.5, metrics(0.95, 0.8, 0.03, 0.98)}}});
+  p.frames[0].methods[0].cloud = cloud(0.95, 0.9, 0.92439);
+  p.frames[0].methods[0].depth = depth(1288.4, 302.6, 3.456, 1.2, 0.97);
+  p.frames[1].methods[0].cloud = cloud(0.97, 0.8, 0.87684);
+  p.frames[1].methods[0].depth = depth(1000, 200, 2, 1, 0.95);
   return p;
 }
 
@@ -78,6 +122,28 @@ TEST(MarkdownTable, RowsPerFrameAndMethodThenMedians) {
   EXPECT_NE(table.find("| median | OpenCV StereoSGBM | 81.00 | 1.300 | 14.00 | 91.00 |"), std::string::npos) << table;
   EXPECT_LT(table.find("| kitti2015/000001 |"), table.find("| median |"));  // medians come last
   EXPECT_NE(table.find("| 0.50 | 95.00 | 0.800 | 3.00 | 98.00 |"), std::string::npos) << table;  // the sweep
+}
+
+TEST(MarkdownTable, CloudAndDepthTablesBetweenTheFramesAndTheSweep) {
+  const std::string table = markdownTable(tinyProtocol());
+  const std::size_t cloudHeader = table.find(
+      "| frame | method | precision 5 % | completeness 5 % | F 5 % | precision 3 % | completeness 3 % | F 3 % |");
+  const std::size_t depthHeader =
+      table.find("| frame | method | RMSE mm | MAE mm | iRMSE 1/km | iMAE 1/km | with estimate % |");
+  ASSERT_NE(cloudHeader, std::string::npos) << table;
+  ASSERT_NE(depthHeader, std::string::npos) << table;
+  EXPECT_LT(table.find("| median | OpenCV StereoSGBM | 81.00 |"), cloudHeader);  // the disparity table first
+  EXPECT_LT(cloudHeader, depthHeader);
+  EXPECT_LT(depthHeader, table.find("| 0.50 |"));  // the sweep last
+  EXPECT_NE(table.find("| kitti2015/000000 | LiDAR-SGM (alpha 0.7) | 95.00 | 90.00 | 92.44 | 47.50 | 45.00 | 46.22 |"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("| kitti2015/000000 | LiDAR-SGM (alpha 0.7) | 1288 | 303 | 3.46 | 1.20 | 97.00 |"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("| median | LiDAR-SGM (alpha 0.7) | 96.00 | 85.00 | 90.06 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| median | LiDAR-SGM (alpha 0.7) | 1144 | 251 | 2.73 | 1.10 | 96.00 |"), std::string::npos)
+      << table;
 }
 
 TEST(ToJson, RoundTripsEveryFigure) {
@@ -106,6 +172,21 @@ TEST(ToJson, RoundTripsEveryFigure) {
   EXPECT_EQ(p1.at("medians").at(1).at("gt_pixels").get<long>(), 200);
   EXPECT_DOUBLE_EQ(p1.at("sweeps").at("fused_sgm").at(1).at("alpha").get<double>(), 0.5);
   EXPECT_DOUBLE_EQ(p1.at("sweeps").at("fused_sgm").at(1).at("correct").get<double>(), 0.95);
+  const nlohmann::json& c = fused.at("cloud");
+  EXPECT_DOUBLE_EQ(c.at("tau_5").at("precision").get<double>(), 0.95);
+  EXPECT_DOUBLE_EQ(c.at("tau_5").at("completeness").get<double>(), 0.9);
+  EXPECT_DOUBLE_EQ(c.at("tau_5").at("f_score").get<double>(), 0.92439);
+  EXPECT_DOUBLE_EQ(c.at("tau_3").at("precision").get<double>(), 0.475);
+  EXPECT_EQ(c.at("points").get<long>(), 10);
+  const nlohmann::json& d = fused.at("depth");
+  EXPECT_DOUBLE_EQ(d.at("rmse_mm").get<double>(), 1288.4);
+  EXPECT_DOUBLE_EQ(d.at("mae_mm").get<double>(), 302.6);
+  EXPECT_DOUBLE_EQ(d.at("irmse_per_km").get<double>(), 3.456);
+  EXPECT_DOUBLE_EQ(d.at("imae_per_km").get<double>(), 1.2);
+  EXPECT_DOUBLE_EQ(d.at("density").get<double>(), 0.97);
+  EXPECT_EQ(d.at("estimated_pixels").get<long>(), 15);
+  EXPECT_DOUBLE_EQ(p1.at("medians").at(0).at("depth").at("rmse_mm").get<double>(), 1144.2);
+  EXPECT_DOUBLE_EQ(p1.at("medians").at(0).at("cloud").at("tau_5").at("precision").get<double>(), 0.96);
 }
 
 TEST(MethodMedians, KeepsAlphasAndTheSweepsBestApart) {

@@ -24,6 +24,9 @@ struct EvalFrame {
   LidarPoints lidar;                ///< the LiDAR input (several points per pixel allowed)
   Image<std::int16_t> lidarSparse;  ///< the same input, one x16 disparity per pixel (nearest), kInvalidDisparity elsewhere
   Image<float> groundTruth;         ///< disparity [px], 0 = no GT
+  /// true where the GT covers every pixel, so its 0 means "no surface" (sky), not "not measured":
+  /// the cloud metrics then count a point there as wrong (CloudScoring::denseGroundTruth).
+  bool denseGroundTruth = false;
   Image<std::uint8_t> exclude;      ///< 1 where a pixel is a LiDAR input pixel (not scored), same size
   double focalBaseline = 0.0;       ///< f*b [px*m], for depth <-> disparity (IP-Basic works on depth)
   int numDisparities = 128;         ///< search range for this frame (multiple of 16)

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lidar_sgm/eval/cloud_metrics.hpp"
 #include "lidar_sgm/eval/methods.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 
@@ -22,6 +23,8 @@ struct MethodResult {
   /// The group's best alpha of the sweep (chosen on the same frames: an upper bound), reported
   /// beside the same method at the paper's alpha.
   bool bestAlpha = false;
+  CloudMetrics cloud{};  ///< the same output scored as a cloud
+  DepthMetrics depth{};  ///< and as a depth map (KITTI depth completion)
 };
 
 /// Same method and the same role (sweep best or not): what the medians are grouped by.
@@ -56,14 +59,24 @@ double medianOf(std::vector<double> values);
 /// summed (the pixel counts behind the medians). Empty input gives default metrics.
 DisparityMetrics medianOver(const std::vector<DisparityMetrics>& metrics);
 
+/// The same for the cloud metrics: per-field medians of precision, completeness and F at each
+/// tau (so the median F is not the F of the median precision and completeness); counts summed.
+CloudMetrics medianCloud(const std::vector<CloudMetrics>& metrics);
+
+/// The same for the depth metrics: per-field medians of RMSE, MAE, iRMSE, iMAE and density.
+DepthMetrics medianDepth(const std::vector<DepthMetrics>& metrics);
+
 /// Per method entry (sameEntry; in order of first appearance): its medians over the protocol's
-/// frames, with the median run time as `milliseconds`.
+/// frames (disparity, cloud and depth metrics), with the median run time as `milliseconds`.
 std::vector<MethodResult> methodMedians(const ProtocolResult& result);
 
 /// Markdown: one row per frame x method (frame | method | correct % | RMSE px | D1 % |
 /// density %), then a "median" row per method over the frames; shares in percent with 2
 /// decimals, RMSE with 3. Each sweep follows as its own table (alpha | the same columns).
-/// Frames are named "dataset/frame" (frame alone when dataset is empty).
+/// Frames are named "dataset/frame" (frame alone when dataset is empty). Between the two come a
+/// "cloud" table (frame | method | precision, completeness, F-score at tau 5 % and 3 %, in
+/// percent) and a "depth" table (frame | method | RMSE mm | MAE mm | iRMSE 1/km | iMAE 1/km |
+/// with estimate %), rows and medians as in the first.
 std::string markdownTable(const ProtocolResult& result);
 
 /// Every figure, machine-readable. Methods are named by their stable id (methodId), with
@@ -72,8 +85,10 @@ std::string markdownTable(const ProtocolResult& result);
 /// DisparityMetrics, rmse in px, ms in milliseconds:
 /// {"protocols":[{"protocol","description","frames":[{"dataset","frame","methods":[{"method",
 /// ["alpha",] "best_alpha","name","correct","rmse","d1","d1_est","density","gt_pixels",
-/// "estimated_pixels","ms"}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
-/// "correct","rmse",...}]}}]}
+/// "estimated_pixels","ms","cloud":{"points","gt_pixels","tau_3":{"precision","completeness",
+/// "f_score"},"tau_5":{...}},"depth":{"rmse_mm","mae_mm","irmse_per_km","imae_per_km","density",
+/// "gt_pixels","estimated_pixels"}}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
+/// "correct","rmse",...}]}}]} (the sweeps hold the disparity metrics only).
 nlohmann::json toJson(const std::vector<ProtocolResult>& results);
 
 /// Writes `text` to a temporary file in the same directory and renames it over `path`, so a
