@@ -34,7 +34,8 @@ void printHelp(const char* program) {
   std::printf(
       "Syntax is: %s INPUT.{pcd,bin,ply} OUTPUT.{pcd,ply} -calib CALIB [-left L.png] [-right R.png] <options>\n"
       "  INPUT   the LiDAR scan: KITTI velodyne .bin, or PCD/PLY with x, y, z fields (LiDAR frame, metres)\n"
-      "  OUTPUT  the dense cloud, PCD or PLY (see -format); XYZRGB when there is a left image, else XYZ\n"
+      "  OUTPUT  the dense cloud, PCD or PLY (see -format): x y z, rgb when there is a left image, and the\n"
+      "          per-point confidence in [0, 1] (field `confidence`; not with -no_confidence)\n"
       "  -calib CALIB             KITTI object calib (.txt), KITTI raw (calib_cam_to_cam.txt or its folder,\n"
       "                           with calib_velo_to_cam.txt beside it) or our YAML (.yaml/.yml)\n"
       "  -left L.png -right R.png rectified stereo pair: fused LiDAR-SGM (default without them: LiDAR-only)\n"
@@ -60,6 +61,8 @@ void printHelp(const char* program) {
       "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
       "                           0 = none or beyond -max_depth)\n"
       "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
+      "  -confidence OUT.png      also write the confidence (8-bit gray: 255 x the probability that the\n"
+      "                           disparity is right, 0 = none)\n"
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
@@ -135,6 +138,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   sgm.setProjectionOptions(projection);
   sgm.setKeepOrganized(args.has("keep_organized"));
   sgm.setCropToScan(!args.has("no_crop_to_scan"));
+  sgm.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
   const OutputOptions out = outputOptionsFrom(args);
   sgm.setOutputFrame(out.frame);
   sgm.setMaxDepth(out.maxDepth);
@@ -183,6 +187,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const std::string disparityPath = args.text("disparity", "");
   const std::string colorPath = args.text("color", "");
   const std::string depthPath = args.text("depth", "");
+  const std::string confidencePath = args.text("confidence", "");
   Timer saveTimer;
   std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
@@ -194,6 +199,11 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   if (!depthPath.empty()) {
     std::printf(", %s", depthPath.c_str());
     lidar_sgm::io::writeImageAtomically(depthPath, lidar_sgm::io::toKittiDepth(sgm.getDepthImage().view()));
+  }
+  if (!confidencePath.empty()) {
+    std::printf(", %s", confidencePath.c_str());
+    lidar_sgm::io::writeImageAtomically(confidencePath,
+                                        lidar_sgm::io::toConfidencePng(sgm.getConfidenceImage().view()));
   }
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
@@ -209,7 +219,7 @@ int run(int argc, char** argv) {
   const Arguments args(argc, argv,
                        joined(lidar_sgm::apps::sgmValueOptions(),
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
-                               "disparity", "depth", "color"}),
+                               "disparity", "depth", "color", "confidence"}),
                        joined(lidar_sgm::apps::sgmFlagOptions(),
                               {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
@@ -229,7 +239,10 @@ int run(int argc, char** argv) {
   const std::vector<std::string> inputs{inputPath, calibPath, leftPath, rightPath};
   lidar_sgm::apps::requireOutput(outPath, {".pcd", ".ply"}, inputs);
   std::vector<std::string> outputs{outPath};
-  for (const char* option : {"disparity", "depth", "color"}) {
+  if (args.has("confidence") && args.has("no_confidence")) {
+    throw std::invalid_argument("-confidence OUT.png needs the confidence, which -no_confidence turns off");
+  }
+  for (const char* option : {"disparity", "depth", "color", "confidence"}) {
     const std::string path = args.text(option, "");
     if (path.empty()) continue;
     lidar_sgm::apps::requireOutput(path, {".png"}, inputs);
@@ -288,9 +301,13 @@ int run(int argc, char** argv) {
     }
     std::printf(" [done, %.0f ms : %dx%d]\n", imageTimer.elapsedMs(), left.cols, left.rows);
   }
-  // Colored output when an image can color it.
-  return left.empty() ? densify<pcl::PointXYZ>(args, scan, calibration, left, right)
-                      : densify<pcl::PointXYZRGB>(args, scan, calibration, left, right);
+  // Colored output when an image can color it; with the confidence field unless it is off.
+  if (args.has("no_confidence")) {
+    return left.empty() ? densify<pcl::PointXYZ>(args, scan, calibration, left, right)
+                        : densify<pcl::PointXYZRGB>(args, scan, calibration, left, right);
+  }
+  return left.empty() ? densify<lidar_sgm::PointXYZConfidence>(args, scan, calibration, left, right)
+                      : densify<lidar_sgm::PointXYZRGBConfidence>(args, scan, calibration, left, right);
 }
 
 }  // namespace

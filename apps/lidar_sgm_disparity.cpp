@@ -41,6 +41,8 @@ void printHelp(const char* program) {
       "  -no_crop_to_scan         LiDAR-only: keep pixels above the scan's top / below its bottom beam (default:\n"
       "                           cleared, nothing was measured there; as lidar_sgm_densify)\n"
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
+      "  -confidence OUT_CONF.png also write the confidence (8-bit gray: 255 x the probability that the\n"
+      "                           disparity is right, 0 = none)\n"
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
@@ -52,7 +54,7 @@ void requirePngOutput(const std::string& path, const std::vector<std::string>& i
 }
 
 int run(int argc, char** argv) {
-  const Arguments args(argc, argv, joined(sgmValueOptions(), {"lidar", "lidar_depth", "fb", "color"}),
+  const Arguments args(argc, argv, joined(sgmValueOptions(), {"lidar", "lidar_depth", "fb", "color", "confidence"}),
                        joined(sgmFlagOptions(), {"no_crop_to_scan"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_disparity", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
@@ -67,6 +69,7 @@ int run(int argc, char** argv) {
   const std::string lidarPath = args.text("lidar", "");
   const std::string depthPath = args.text("lidar_depth", "");
   const std::string colorPath = args.text("color", "");
+  const std::string confidencePath = args.text("confidence", "");
   if (!lidarPath.empty() && !depthPath.empty()) {
     throw std::invalid_argument("give either -lidar or -lidar_depth, not both");
   }
@@ -84,6 +87,15 @@ int run(int argc, char** argv) {
   if (!colorPath.empty()) {
     requirePngOutput(colorPath, inputs);
     if (samePath(colorPath, outPath)) throw std::invalid_argument("-color must differ from OUT.png");
+  }
+  if (!confidencePath.empty()) {
+    if (args.has("no_confidence")) {
+      throw std::invalid_argument("-confidence OUT_CONF.png needs the confidence, which -no_confidence turns off");
+    }
+    requirePngOutput(confidencePath, inputs);
+    if (samePath(confidencePath, outPath) || (!colorPath.empty() && samePath(confidencePath, colorPath))) {
+      throw std::invalid_argument("-confidence must differ from OUT.png and -color");
+    }
   }
   const lidar_sgm::Parameters params = parametersFrom(args);
   const lidar_sgm::Backend backend = lidar_sgm::apps::backendFrom(args);
@@ -119,6 +131,7 @@ int run(int argc, char** argv) {
   densifier.setBackend(backend);
   densifier.setComputeCloud(false);
   densifier.setCropToScan(!args.has("no_crop_to_scan"));
+  densifier.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
   if (stereo) densifier.setStereoPair(lidar_sgm::io::grayView(left), lidar_sgm::io::grayView(right));
   Timer sgmTimer;
   const bool lidarOnly = !stereo;
@@ -142,6 +155,10 @@ int run(int argc, char** argv) {
     std::printf(", %s", colorPath.c_str());
     const double maxDisparity = params.minDisparity + params.numDisparities;
     lidar_sgm::io::writeImageAtomically(colorPath, lidar_sgm::io::colorizeDisparity(disparity.view(), maxDisparity));
+  }
+  if (!confidencePath.empty()) {
+    std::printf(", %s", confidencePath.c_str());
+    lidar_sgm::io::writeImageAtomically(confidencePath, lidar_sgm::io::toConfidencePng(densifier.confidence().view()));
   }
   std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
   return 0;

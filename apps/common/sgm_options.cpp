@@ -2,6 +2,9 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
+
+#include "lidar_sgm/core/confidence.hpp"
 
 namespace lidar_sgm {
 namespace apps {
@@ -9,18 +12,20 @@ namespace apps {
 const std::set<std::string>& sgmValueOptions() {
   static const std::set<std::string> options{"alpha", "sigma", "lidar_cost_cap", "num_disparities", "min_disparity",
                                              "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
-                                             "backend", "lidar_coverage_rows", "scale", "threads"};
+                                             "backend", "lidar_coverage_rows", "scale", "threads",
+                                             "min_confidence"};
   return options;
 }
 
 const std::set<std::string>& sgmFlagOptions() {
-  static const std::set<std::string> flags{"no_lr_check", "lr_check_with_lidar", "stereo_cost_without_lidar"};
+  static const std::set<std::string> flags{"no_lr_check", "lr_check_with_lidar", "stereo_cost_without_lidar",
+                                           "no_confidence"};
   return flags;
 }
 
 std::string sgmOptionsHelp() {
   const Parameters d;
-  char text[3600];
+  char text[4400];
   std::snprintf(text, sizeof(text),
                 "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
                 "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
@@ -43,9 +48,14 @@ std::string sgmOptionsHelp() {
                 "                           disparity and cloud keep the full size) (default: %g)\n"
                 "  -threads N               matcher threads, 0 = all hardware threads; never changes the result\n"
                 "                           (default: %d)\n"
-                "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto, the fastest built)\n",
+                "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto, the fastest built)\n"
+                "  -min_confidence C        drop pixels (and points) whose confidence, about the probability that\n"
+                "                           the disparity is right, is below C in [0, 1]; 0 keeps every pixel\n"
+                "                           (default: %g)\n"
+                "  -no_confidence           compute no confidence (faster; no confidence field, -min_confidence 0)\n",
                 d.alpha, d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
-                d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows, d.scale, d.threads);
+                d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows, d.scale, d.threads,
+                kDefaultMinConfidence);
   return text;
 }
 
@@ -68,6 +78,7 @@ Parameters parametersFrom(const Arguments& args) {
   p.lidarCoverageRows = args.integer("lidar_coverage_rows", p.lidarCoverageRows);
   p.scale = static_cast<float>(args.number("scale", p.scale));
   p.threads = args.integer("threads", p.threads);
+  p.confidence = !args.has("no_confidence");
   const std::string census = args.text("census", "9x7");
   if (census == "9x7") {
     p.censusType = CensusType::Census9x7;
@@ -102,6 +113,20 @@ Backend backendFrom(const Arguments& args) {
 std::set<std::string> joined(std::set<std::string> a, const std::set<std::string>& b) {
   a.insert(b.begin(), b.end());
   return a;
+}
+
+double minConfidenceFrom(const Arguments& args) {
+  if (args.has("no_confidence")) {
+    if (args.has("min_confidence") && args.number("min_confidence", 0.0) > 0.0) {
+      throw std::invalid_argument("option -min_confidence: needs the confidence, which -no_confidence turns off");
+    }
+    return 0.0;
+  }
+  const double c = args.number("min_confidence", kDefaultMinConfidence);
+  if (!(c >= 0.0 && c <= 1.0)) {
+    throw std::invalid_argument("option -min_confidence: " + std::to_string(c) + " must be in [0, 1]");
+  }
+  return c;
 }
 
 }  // namespace apps

@@ -21,6 +21,8 @@ Parameters parametersFrom(const Arguments& args);
 /// The -backend option (default auto), checked against the backends built into this library, so
 /// that a tool refuses it before reading any file.
 Backend backendFrom(const Arguments& args);
+/// The -min_confidence option (default kDefaultMinConfidence; 0 with -no_confidence), in [0, 1].
+double minConfidenceFrom(const Arguments& args);
 /// The union of two option sets.
 std::set<std::string> joined(std::set<std::string> a, const std::set<std::string>& b);
 

@@ -15,6 +15,7 @@
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
+#include "lidar_sgm/eval/confidence_fit.hpp"
 #include "lidar_sgm/eval/group_run.hpp"
 #include "lidar_sgm/eval/groups.hpp"
 #include "lidar_sgm/eval/protocols.hpp"
@@ -48,6 +49,8 @@ void printHelp(const char* program) {
       "                     mode; each frame's search range is rounded up to a multiple of 32) (default: 1)\n"
       "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n"
       "  -no_pictures       skip the per-frame pictures\n"
+      "  -fit_confidence    instead of the protocols: fit the confidence models on synthetic frames and check\n"
+      "                     them on held-out ones (writes DIR/confidence_fit.md and DIR/reliability.png)\n"
       "  and every SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the LiDAR-SGM methods\n"
       "  -h, --help         this help\n"
       "  --version          the tool's name and version\n"
@@ -121,7 +124,7 @@ int run(int argc, char** argv) {
       argc, argv,
       apps::joined(apps::sgmValueOptions(),
                    {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
-      apps::joined(apps::sgmFlagOptions(), {"no_pictures"}));
+      apps::joined(apps::sgmFlagOptions(), {"no_pictures", "fit_confidence"}));
   if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
     throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
@@ -141,6 +144,17 @@ int run(int argc, char** argv) {
   runOptions.threads = threads;
   runOptions.base = base;
   runOptions.backend = backend;
+  if (args.has("fit_confidence")) {
+    if (out.empty()) throw std::invalid_argument("option -fit_confidence: -out DIR is required");
+    ConfidenceFitOptions fit;
+    fit.out = out;
+    fit.threads = threads;
+    apps::Timer timer;
+    std::printf("Fitting the confidence models (3 modes x 2 P3 sets) into %s\n", out.c_str());
+    runConfidenceFit(fit);
+    std::printf("Results in %s: confidence_fit.md, reliability.png [done, %.0f ms]\n", out.c_str(), timer.elapsedMs());
+    return 0;
+  }
   const GroupSelection selection = selectionFrom(args, root);
   printPlan(selection, out.empty() ? "DIR" : out, runOptions, !args.has("no_pictures"));
   if (out.empty()) {

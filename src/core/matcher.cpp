@@ -8,6 +8,7 @@
 
 #include "core/backend_registry.hpp"
 #include "core/baseline_ratio.hpp"
+#include "core/confidence_inputs.hpp"
 #include "core/half_scale.hpp"
 
 namespace lidar_sgm {
@@ -156,6 +157,7 @@ void Matcher::compute(const GrayImageView& left, const GrayImageView& right, con
   }
   timings_ = StageTimings{};
   rescaleMs_ = 0;
+  if (!params_.confidence) confidence_ = Image<std::uint8_t>();
   if (params_.scale == 1.0f) {
     dispatch(left, right, vertical, lidar, mode, disparity);
   } else {
@@ -181,6 +183,28 @@ void Matcher::dispatch(const GrayImageView& left, const GrayImageView& right, co
   } else {
     run(matched, left, right, lidar, mode, disparity);
   }
+  if (params_.confidence) computeConfidence(left, mode, disparity);
+}
+
+void Matcher::computeConfidence(const GrayImageView& left, MatchMode mode, ImageView<const std::int16_t> disparity) {
+  const auto start = std::chrono::steady_clock::now();
+  const int W = disparity.width;
+  const int H = disparity.height;
+  ConfidenceInputs& in = confidenceInputs_;
+  if (mode == MatchMode::LidarOnly) {
+    in.leftRightDifference.resize(W, H);
+    in.leftRightDifference.fill(kNoCounterpartDifference);
+  }
+  in.lidarDistance.resize(W, H);
+  lidarDistance(static_cast<const Image<std::uint8_t>&>(support_).view(), in.lidarDistance.view());
+  in.texture.resize(W, H);
+  in.saturated.resize(W, H);
+  textureAndSaturation(mode == MatchMode::LidarOnly ? GrayImageView() : left, in.texture.view(), in.saturated.view());
+  confidence_.resize(W, H);
+  in.disparityRange.resize(W, H);
+  disparityRange(disparity, in.disparityRange.view());
+  combineConfidence(in, mode, params_.paths, disparity, confidence_.view());
+  timings_.confidence = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 namespace {
@@ -229,6 +253,11 @@ void Matcher::computeAtHalfScale(const GrayImageView& left, const GrayImageView&
     support_.fill(0);
   } else {
     upscaleMask(static_cast<const Image<std::uint8_t>&>(halfSupport_).view(), support_.view());
+  }
+  if (params_.confidence) {
+    std::swap(halfConfidence_, confidence_);
+    confidence_.resize(disparity.width, disparity.height);
+    upscaleMask(static_cast<const Image<std::uint8_t>&>(halfConfidence_).view(), confidence_.view());
   }
   rescaleMs_ += msSince(start);
 }

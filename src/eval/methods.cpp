@@ -71,8 +71,8 @@ namespace {
 
 /// A LiDAR-SGM method as the tools run it: the Densifier on the frame's projected scan, its mode
 /// following the inputs it is given (and the LiDAR-only crop on, its default).
-Image<std::int16_t> runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params,
-                                 Backend backend) {
+void runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params, Backend backend,
+                  MethodOutput& out) {
   const bool images = method.kind != MethodKind::LidarSgm;
   const bool lidar = method.kind == MethodKind::LidarSgm || method.kind == MethodKind::FusedSgm ||
                      method.kind == MethodKind::ThreeCamerasLidar;
@@ -83,7 +83,9 @@ Image<std::int16_t> runDensifier(const Method& method, const EvalFrame& frame, c
   if (images) densifier.setStereoPair(io::grayView(frame.left), io::grayView(frame.right));
   if (method.needsThirdCamera()) densifier.setUpCamera(io::grayView(frame.up), frame.upBaselineRatio);
   densifier.runProjected(lidar ? &frame.lidar : nullptr);
-  return densifier.disparity();
+  out.disparity = densifier.disparity();
+  out.confidence = densifier.confidence();
+  if (densifier.matcher() != nullptr) out.confidenceInputs = densifier.matcher()->confidenceInputs();
 }
 
 }  // namespace
@@ -111,7 +113,7 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
       // The kinds without a LiDAR weight of their own have it by definition (MethodKind).
       params.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
                                         : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
-      out.disparity = runDensifier(method, frame, params, backend);
+      runDensifier(method, frame, params, backend, out);
       break;
     }
   }

@@ -149,6 +149,15 @@ cv::Mat toKittiDepth(ImageView<const float> depth) {
   return png;
 }
 
+cv::Mat toConfidencePng(ImageView<const std::uint8_t> confidence) {
+  if (confidence.empty()) throw std::invalid_argument("toConfidencePng: there is no confidence (it was turned off)");
+  cv::Mat png(confidence.height, confidence.width, CV_8UC1);
+  for (int y = 0; y < confidence.height; ++y) {
+    std::copy(confidence.row(y), confidence.row(y) + confidence.width, png.ptr<std::uint8_t>(y));
+  }
+  return png;
+}
+
 cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxDisparity) {
   cv::Mat scaled(disparity16.height, disparity16.width, CV_8UC1);
   cv::Mat invalid(disparity16.height, disparity16.width, CV_8UC1, cv::Scalar(0));

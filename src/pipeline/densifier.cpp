@@ -1,6 +1,7 @@
 #include "lidar_sgm/pipeline/densifier.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -153,6 +154,10 @@ void Densifier::prepareMatcher() {
 
 void Densifier::match(const LidarPoints* lidar) {
   const auto start = std::chrono::steady_clock::now();
+  if (minConfidence_ > 0.0 && !params_.confidence) {
+    throw std::invalid_argument("a minimum confidence of " + std::to_string(minConfidence_) +
+                                " needs the confidence: turn parameters().confidence on, or set the minimum to 0");
+  }
   const bool useLidar = lidar != nullptr && !lidar->empty();
   if (!useLidar && !hasStereoPair()) {
     throw std::invalid_argument("nothing to match: give LiDAR points, a stereo pair, or both");
@@ -183,7 +188,42 @@ void Densifier::match(const LidarPoints* lidar) {
     // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
     geometry::cropToScanRows(disparity_.view(), projected_.samples, params_.lidarCoverageRows, 2);
   }
+  keepConfidenceOfValidPixels();
+  dropUnconfidentPixels();
   timings_.match = millisecondsSince(start);
+}
+
+void Densifier::keepConfidenceOfValidPixels() {
+  confidence_ = Image<std::uint8_t>();
+  const ImageView<const std::uint8_t> matched = matcher_->confidence();
+  if (matched.empty()) return;
+  // The matcher's confidence, 0 where a later step (the crop) removed the disparity.
+  confidence_.resize(disparity_.width(), disparity_.height());
+  for (int y = 0; y < disparity_.height(); ++y) {
+    for (int x = 0; x < disparity_.width(); ++x) {
+      confidence_(x, y) = disparity_(x, y) == kInvalidDisparity ? 0 : matched(x, y);
+    }
+  }
+}
+
+void Densifier::setMinConfidence(double minConfidence) {
+  if (!(minConfidence >= 0.0 && minConfidence <= 1.0)) {
+    throw std::invalid_argument("minConfidence = " + std::to_string(minConfidence) + ": must be in [0, 1]");
+  }
+  minConfidence_ = minConfidence;
+}
+
+void Densifier::dropUnconfidentPixels() {
+  if (minConfidence_ <= 0.0 || confidence_.empty()) return;
+  // confidence / 255 >= minConfidence, in integers: confidence >= ceil(255 * minConfidence).
+  const int threshold = static_cast<int>(std::ceil(255.0 * minConfidence_ - 1e-9));
+  for (int y = 0; y < disparity_.height(); ++y) {
+    for (int x = 0; x < disparity_.width(); ++x) {
+      if (confidence_(x, y) >= threshold) continue;
+      disparity_(x, y) = kInvalidDisparity;
+      confidence_(x, y) = 0;
+    }
+  }
 }
 
 void Densifier::reprojectResult() {

@@ -25,6 +25,7 @@
 
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
+#include "lidar_sgm/pcl/point_types.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
@@ -181,6 +182,51 @@ TEST_F(DensifyCli, FusedRunWritesDenseColoredPcdAndDisparity) {
   EXPECT_EQ(color.cols, kWidth);
 }
 
+// Every point carries its pixel's confidence in [0, 1]; -min_confidence keeps exactly the
+// points at or above it; -no_confidence gives plain XYZRGB.
+TEST_F(DensifyCli, ConfidenceFieldPngAndMinimum) {
+  const std::string options = " -calib " + kCalib + " -left " + kLeft + " -right " + kRight;
+  RunResult r = runTool(kScan + " " + p("all.pcd") + options +
+                        " -min_confidence 0 -confidence " + p("conf.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  pcl::PCLPointCloud2 blob;
+  ASSERT_EQ(pcl::io::loadPCDFile(p("all.pcd"), blob), 0);
+  EXPECT_EQ(fieldNames(blob), "x y z rgb confidence ");
+  pcl::PointCloud<PointXYZRGBConfidence> all;
+  ASSERT_EQ(pcl::io::loadPCDFile<PointXYZRGBConfidence>(p("all.pcd"), all), 0);
+  float lowest = 1.0f, highest = 0.0f;
+  for (const auto& q : all) {
+    ASSERT_TRUE(q.confidence >= 0.0f && q.confidence <= 1.0f) << q.confidence;
+    lowest = std::min(lowest, q.confidence);
+    highest = std::max(highest, q.confidence);
+  }
+  EXPECT_LT(lowest, 0.5f);
+  EXPECT_GT(highest, 0.9f);
+  const cv::Mat confidence = cv::imread(p("conf.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(confidence.type(), CV_8UC1);
+  EXPECT_EQ(confidence.cols, kWidth);
+  // Points beyond -max_depth are not written, their pixels keep their confidence.
+  EXPECT_GE(static_cast<std::size_t>(cv::countNonZero(confidence)), all.size());
+
+  r = runTool(kScan + " " + p("some.pcd") + options + " -min_confidence 0.9");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  pcl::PointCloud<PointXYZRGBConfidence> some;
+  ASSERT_EQ(pcl::io::loadPCDFile<PointXYZRGBConfidence>(p("some.pcd"), some), 0);
+  std::size_t expected = 0;
+  for (const auto& q : all) expected += q.confidence >= 0.9f - 1e-6f ? 1 : 0;
+  EXPECT_EQ(some.size(), expected);
+  for (const auto& q : some) ASSERT_GE(q.confidence, 0.9f - 1e-6f);
+
+  r = runTool(kScan + " " + p("plain.pcd") + options + " -no_confidence");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  ASSERT_EQ(pcl::io::loadPCDFile(p("plain.pcd"), blob), 0);
+  EXPECT_EQ(fieldNames(blob), "x y z rgb ");
+  expectFailure(kScan + " " + p("out.pcd") + options + " -min_confidence 1.5", "-min_confidence");
+  expectFailure(kScan + " " + p("out.pcd") + options + " -no_confidence -confidence " +
+                    p("c.png"),
+                "-no_confidence");
+}
+
 TEST_F(DensifyCli, LidarOnlyWithLeftImageWritesColoredPly) {
   const RunResult r = runTool(kScan + " " + p("out.ply") + " -calib " + kCalib + " -left " + kLeft);
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -206,7 +252,7 @@ TEST_F(DensifyCli, LidarOnlyWithoutImageWritesXyzInLidarFrame) {
   EXPECT_EQ(fileCount(), 1u);
   pcl::PCLPointCloud2 blob;
   ASSERT_EQ(pcl::io::loadPCDFile(p("out.pcd"), blob), 0);
-  EXPECT_EQ(fieldNames(blob), "x y z ");
+  EXPECT_EQ(fieldNames(blob), "x y z confidence ");
   EXPECT_FALSE(hasField(blob, "rgb"));
   pcl::PointCloud<pcl::PointXYZ> cloud;
   ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZ>(p("out.pcd"), cloud), 0);

@@ -44,6 +44,11 @@ struct StageSet {
   std::function<void(SelectedDisparity, ImageView<const std::int16_t>, ImageView<const std::uint8_t>, int, int, bool)>
       leftRightCheck;
   std::function<void(ImageView<const std::int16_t>, int, ImageView<std::int16_t>)> medianFilter;
+  std::function<void(const AggregatedCostVolume&, ImageView<const std::int16_t>, ImageView<std::uint8_t>,
+                     ImageView<std::uint16_t>)>
+      peakRatioMargin;
+  std::function<void(ImageView<const std::int16_t>, ImageView<const std::int16_t>, int, ImageView<std::uint8_t>)>
+      leftRightDifference;
 };
 
 // The stage entry points of `backend` at `threads`; false when this build has none.
@@ -76,6 +81,12 @@ bool stagesOf(const std::string& backend, int threads, StageSet& s) {
       cpu::leftRightCheck(sel, right, support, minD, maxDiff, keep, t);
     };
     s.medianFilter = [t](auto in, int size, auto out) { cpu::medianFilter(in, size, out, t); };
+    s.peakRatioMargin = [t](const auto& sum, auto best, auto out, auto cost) {
+      cpu::peakRatioMargin(sum, best, out, cost, t);
+    };
+    s.leftRightDifference = [t](auto best, auto right, int minD, auto out) {
+      cpu::leftRightDifference(best, right, minD, out, t);
+    };
     return true;
   }
 #endif
@@ -253,6 +264,20 @@ TEST_P(BackendStages, AggregatePathsSelectionAndLeftRightCheck) {
             cpu_ref::rightDisparityIndex(expected, c.minDisparity, rightExpected.view());
             stages_.rightDisparityIndex(expected, c.minDisparity, rightActual.view());
             EXPECT_TRUE(sameImages(rightExpected, rightActual)) << "rightDisparityIndex";
+            Image<std::uint8_t> marginExpected(c.width, c.height), marginActual(c.width, c.height);
+            Image<std::uint16_t> costExpected(c.width, c.height), costActual(c.width, c.height);
+            cpu_ref::peakRatioMargin(expected, std::as_const(bestExpected).view(), marginExpected.view(),
+                                     costExpected.view());
+            stages_.peakRatioMargin(expected, std::as_const(bestExpected).view(), marginActual.view(),
+                                    costActual.view());
+            EXPECT_TRUE(sameImages(marginExpected, marginActual)) << "peakRatioMargin u " << uniqueness;
+            EXPECT_TRUE(sameImages(costExpected, costActual)) << "peakRatioMargin best cost";
+            Image<std::uint8_t> lrExpected(c.width, c.height), lrActual(c.width, c.height);
+            cpu_ref::leftRightDifference(std::as_const(bestExpected).view(), std::as_const(rightExpected).view(),
+                                         c.minDisparity, lrExpected.view());
+            stages_.leftRightDifference(std::as_const(bestExpected).view(), std::as_const(rightExpected).view(),
+                                        c.minDisparity, lrActual.view());
+            EXPECT_TRUE(sameImages(lrExpected, lrActual)) << "leftRightDifference";
             Image<std::uint8_t> support(c.width, c.height);
             for (int y = 0; y < c.height; ++y) {
               for (int x = 0; x < c.width; ++x) support(x, y) = (x * 7 + y * 3) % 5 == 0 ? 1 : 0;
@@ -356,6 +381,7 @@ std::vector<FrameCase> frameCases() {
       {"Disp12MaxDiff", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.disp12MaxDiff = 4; }},
       {"Median3", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.medianSize = 3; }},
       {"MedianOff", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.medianSize = 0; }},
+      {"NoConfidence", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.confidence = false; }},
       {"NoSubpixel", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.subpixel = false; }},
       {"CenterSymmetricCensus", 99, 41, 8, "stereo",
        [](Parameters& p) { p.numDisparities = 32; p.censusType = CensusType::CenterSymmetric9x7; }},
@@ -411,6 +437,25 @@ TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
     }
   }
   EXPECT_TRUE(sameImages(supportExpected, supportActual)) << "lidarSupport";
+  // The confidence (on by default) and the inputs it was computed from.
+  const auto copyOf = [](ImageView<const std::uint8_t> view) {
+    Image<std::uint8_t> out(view.width, view.height);
+    for (int y = 0; y < view.height; ++y) {
+      for (int x = 0; x < view.width; ++x) out(x, y) = view(x, y);
+    }
+    return out;
+  };
+  if (params.confidence) {
+    ASSERT_EQ(backend->confidence().width, c.width);
+    EXPECT_TRUE(sameImages(copyOf(reference->confidence()), copyOf(backend->confidence()))) << "confidence";
+    EXPECT_TRUE(sameImages(reference->confidenceInputs().margin, backend->confidenceInputs().margin)) << "margin";
+    EXPECT_TRUE(sameImages(reference->confidenceInputs().bestCost, backend->confidenceInputs().bestCost));
+    EXPECT_TRUE(sameImages(reference->confidenceInputs().leftRightDifference,
+                           backend->confidenceInputs().leftRightDifference))
+        << "leftRightDifference";
+  } else {
+    EXPECT_TRUE(backend->confidence().empty());
+  }
   // A result that is all invalid would match trivially: the frames must have estimates.
   int valid = 0;
   for (int y = 0; y < c.height; ++y) {

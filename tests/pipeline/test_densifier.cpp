@@ -4,7 +4,9 @@
 // named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +17,8 @@
 
 namespace lidar_sgm {
 namespace {
+
+void expectError(const std::function<void()>& fn, const std::string& words);
 
 constexpr int kWidth = 96;
 constexpr int kHeight = 64;
@@ -91,6 +95,68 @@ TEST(Densifier, FusedDisparityIsTheMatchersOnTheProjectedScan) {
   Image<std::int16_t> expected(kWidth, kHeight);
   matcher->compute(s.stereo.left.view(), s.stereo.right.view(), &lidar, expected.view());
   expectSameImage(densifier.disparity(), expected);
+}
+
+// The minimum confidence drops pixels from the disparity, the confidence, depth and cloud alike,
+// and drops exactly those below the threshold.
+TEST(Densifier, MinConfidenceDropsTheSamePixelsEverywhere) {
+  const Scene s;
+  Densifier all;
+  all.setCalibration(s.calibration);
+  all.setParameters(smallParameters());
+  all.setBackend(Backend::CpuRef);
+  all.setStereoPair(s.stereo.left.view(), s.stereo.right.view());
+  all.setMinConfidence(0.0);
+  all.run(s.scan);
+  ASSERT_EQ(all.confidence().width(), kWidth);
+  // A threshold between the lowest and highest confidence of the frame, so some pixels go.
+  int lowest = 255, highest = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      if (all.disparity()(x, y) == kInvalidDisparity) {
+        EXPECT_EQ(all.confidence()(x, y), 0);
+        continue;
+      }
+      lowest = std::min<int>(lowest, all.confidence()(x, y));
+      highest = std::max<int>(highest, all.confidence()(x, y));
+    }
+  }
+  ASSERT_LT(lowest, highest);
+  const int threshold = (lowest + highest + 1) / 2;
+  Densifier some = std::move(all);
+  some.setMinConfidence(threshold / 255.0);
+  some.run(s.scan);
+  Densifier reference;
+  reference.setCalibration(s.calibration);
+  reference.setParameters(smallParameters());
+  reference.setBackend(Backend::CpuRef);
+  reference.setStereoPair(s.stereo.left.view(), s.stereo.right.view());
+  reference.setMinConfidence(0.0);
+  reference.run(s.scan);
+  long kept = 0, dropped = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const int c = reference.confidence()(x, y);
+      const bool keep = reference.disparity()(x, y) != kInvalidDisparity && c >= threshold;
+      EXPECT_EQ(some.disparity()(x, y), keep ? reference.disparity()(x, y) : kInvalidDisparity) << x << "," << y;
+      EXPECT_EQ(some.confidence()(x, y), keep ? c : 0);
+      EXPECT_EQ(some.depth()(x, y) > 0.0f, keep && reference.depth()(x, y) > 0.0f);
+      (keep ? kept : dropped) += 1;
+    }
+  }
+  EXPECT_GT(kept, 0);
+  EXPECT_GT(dropped, 0);
+  EXPECT_EQ(static_cast<long>(some.cloud().size()), kept);
+
+  EXPECT_THROW(some.setMinConfidence(1.5), std::invalid_argument);
+  EXPECT_THROW(some.setMinConfidence(-0.1), std::invalid_argument);
+  Parameters off = smallParameters();
+  off.confidence = false;
+  some.setParameters(off);
+  expectError([&] { some.run(s.scan); }, "needs the confidence");
+  some.setMinConfidence(0.0);
+  some.run(s.scan);
+  EXPECT_TRUE(some.confidence().empty());
 }
 
 TEST(Densifier, ACloudAndItsProjectionGiveTheSameFrame) {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
 #include "lidar_sgm/core/parameters.hpp"
@@ -50,9 +51,10 @@ struct StageTimings {
   double selectDisparity = 0;
   double leftRightCheck = 0;
   double medianFilter = 0;
+  double confidence = 0;  ///< the core's part (LiDAR distance, texture, combination)
   double total() const {
     return census + censusCost + verticalCensusCost + lidarCost + fuseCosts + aggregatePaths + selectDisparity +
-           leftRightCheck + medianFilter;
+           leftRightCheck + medianFilter + confidence;
   }
 };
 
@@ -130,6 +132,12 @@ class Matcher {
   /// 1 where a LiDAR point touched the pixel's 3x3 neighbourhood in the last frame (at the
   /// frame's full resolution, also when it was matched at scale 0.5).
   ImageView<const std::uint8_t> lidarSupport() const { return support_.view(); }
+  /// Per-pixel confidence of the last frame (parameters().confidence): 0..255, close to 255 times
+  /// the probability that the pixel's disparity is correct (core/confidence.hpp); 0 where the
+  /// disparity is invalid. At the frame's full resolution. Empty when confidence is off.
+  ImageView<const std::uint8_t> confidence() const { return confidence_.view(); }
+  /// The inputs the confidence was computed from, at the size the frame was matched at.
+  const ConfidenceInputs& confidenceInputs() const { return confidenceInputs_; }
   /// Milliseconds spent scaling the inputs down and the disparity up in the last frame
   /// (0 at scale 1); not part of lastTimings().total().
   double lastRescaleMs() const { return rescaleMs_; }
@@ -152,6 +160,9 @@ class Matcher {
   Parameters params_;
   StageTimings timings_;
   Image<std::uint8_t> support_;
+  /// The backend fills margin and leftRightDifference (not in LiDAR-only mode) when
+  /// params.confidence is set; the core the rest.
+  ConfidenceInputs confidenceInputs_;
 
  private:
   /// Runs the backend on (possibly half-scale) inputs.
@@ -160,6 +171,11 @@ class Matcher {
   void computeAtHalfScale(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
                           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
 
+  /// The core's part of the confidence, after the backend ran on `left` (matched size).
+  void computeConfidence(const GrayImageView& left, MatchMode mode, ImageView<const std::int16_t> disparity);
+
+  Image<std::uint8_t> confidence_;
+  Image<std::uint8_t> halfConfidence_;
   MatchMode lastMode_ = MatchMode::StereoOnly;
   bool lastUpCamera_ = false;
   double rescaleMs_ = 0;

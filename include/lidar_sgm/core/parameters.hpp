@@ -57,6 +57,9 @@ struct Parameters {
   /// half-scale pixel covering its 2x2 block). P1, P2 and sigma keep their values, in the pixels
   /// of the matched image.
   float scale = 1.0f;
+  /// Also compute the per-pixel confidence (Matcher::confidence(), core/confidence.hpp): the
+  /// peak-ratio margin and the left-right difference in the backend, the rest in the core.
+  bool confidence = true;
   /// Worker threads of the fast backends: 0 = the machine's hardware threads. Never changes the
   /// result (fixed partitions; every backend is bit-identical for any count). In [0, 256].
   int threads = 0;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/core/parameters.hpp"
@@ -51,6 +52,10 @@ std::string displayName(const Method& method);
 
 struct MethodOutput {
   Image<std::int16_t> disparity;  ///< x16, kInvalidDisparity where none
+  /// LiDAR-SGM methods: Densifier::confidence() (empty for the baselines, which have none).
+  Image<std::uint8_t> confidence;
+  /// LiDAR-SGM methods: the inputs of the confidence, at the matched size.
+  ConfidenceInputs confidenceInputs;
   double milliseconds = 0;
 };
 

@@ -53,6 +53,10 @@ cv::Mat toKittiDisparity(ImageView<const std::int16_t> disparity16);
 /// to 0) is written as 0: "no value" is safer than a clamped, wrong one.
 cv::Mat toKittiDepth(ImageView<const float> depth);
 
+/// Confidence (0..255, core/confidence.hpp) -> 8-bit gray PNG of the same values: confidence / 255
+/// is about the probability that the pixel's disparity is right; 0 = no disparity.
+cv::Mat toConfidencePng(ImageView<const std::uint8_t> confidence);
+
 /// Color picture of x16 disparities (turbo color map, 0 .. maxDisparity), invalid pixels black.
 cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxDisparity);
 

@@ -12,12 +12,17 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "lidar_sgm/pcl/point_types.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 
 /// The point types src/pcl/sgm_densification.cpp instantiates (Boost.PP sequences, as PCL's own):
 /// every PCL type with x, y, z in, and these out. Other types: include impl/sgm_densification.hpp.
 #define LIDAR_SGM_PCL_INPUT_POINT_TYPES PCL_XYZ_POINT_TYPES
 #define LIDAR_SGM_PCL_OUTPUT_POINT_TYPES (pcl::PointXYZ)(pcl::PointXYZRGB)(pcl::PointXYZRGBA)(pcl::PointXYZI)
+/// The types with the per-point confidence (point_types.hpp), instantiated for these inputs.
+#define LIDAR_SGM_PCL_CONFIDENCE_INPUT_POINT_TYPES (pcl::PointXYZ)(pcl::PointXYZI)
+#define LIDAR_SGM_PCL_CONFIDENCE_OUTPUT_POINT_TYPES \
+  (lidar_sgm::PointXYZConfidence)(lidar_sgm::PointXYZRGBConfidence)
 
 namespace lidar_sgm {
 
@@ -187,6 +192,10 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// where nothing was measured (default true).
   void setCropToScan(bool crop) { densifier_.setCropToScan(crop); }
   bool getCropToScan() const { return densifier_.cropToScan(); }
+  /// Points whose confidence is below `minConfidence` in [0, 1] are dropped (0 keeps every
+  /// pixel); see Densifier::setMinConfidence. Throws std::invalid_argument outside [0, 1].
+  void setMinConfidence(double minConfidence) { densifier_.setMinConfidence(minConfidence); }
+  double getMinConfidence() const { return densifier_.minConfidence(); }
 
   // ---- the output cloud: geometry::ReprojectionOptions; checked in filter() -----------------
 
@@ -217,6 +226,9 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   const Image<std::int16_t>& getDisparityImage() const { return densifier_.disparity(); }
   /// The dense depth z [m] of the last frame in the left camera, 0 where there is none.
   const Image<float>& getDepthImage() const { return densifier_.depth(); }
+  /// The last frame's confidence, 0..255 (Densifier::confidence()); output types with a
+  /// `confidence` field (point_types.hpp) get it per point as confidence / 255.
+  const Image<std::uint8_t>& getConfidenceImage() const { return densifier_.confidence(); }
   /// The projected scan of the last frame (sparse disparities, per-reason counts), empty after
   /// a failed one; sourceIndex[i] is the index of samples[i]'s point in the input cloud.
   const geometry::ProjectedLidar& getProjectedLidar() const { return projected_; }

@@ -94,6 +94,13 @@ class Densifier {
   void setCropToScan(bool crop) { cropToScan_ = crop; }
   bool cropToScan() const { return cropToScan_; }
 
+  /// Drop the pixels whose confidence (core/confidence.hpp) is below `minConfidence` in [0, 1]
+  /// from the disparity, depth and cloud alike (0 keeps every pixel; default
+  /// kDefaultMinConfidence). Needs parameters().confidence (a run throws otherwise when > 0).
+  /// Throws std::invalid_argument outside [0, 1].
+  void setMinConfidence(double minConfidence);
+  double minConfidence() const { return minConfidence_; }
+
   /// Whether run() also fills depth() and the dense cloud (default true). Off, a run stops at
   /// the disparity (what the disparity evaluation and the matcher benchmark need).
   void setComputeCloud(bool compute) { computeCloud_ = compute; }
@@ -118,6 +125,10 @@ class Densifier {
   /// Dense disparity: int16 x16 fixed point (OpenCV's CV_16S convention), kInvalidDisparity
   /// (-32768) where there is none. io/opencv.hpp converts it to OpenCV's invalid value.
   const Image<std::int16_t>& disparity() const { return disparity_; }
+  /// Per-pixel confidence, 0..255 ~ 255 x the probability that the disparity is correct
+  /// (core/confidence.hpp), 0 where there is no disparity; empty when parameters().confidence
+  /// is off.
+  const Image<std::uint8_t>& confidence() const { return confidence_; }
   /// Dense depth z [m] in the left camera, from z = f*b/d (Eq. 3), 0 where there is no
   /// disparity or the depth exceeds the reprojection's maxDepth (KITTI's depth-completion
   /// convention: 0 = none). Empty when no cloud was computed.
@@ -147,6 +158,8 @@ class Densifier {
   void prepareMatcher();
   void match(const LidarPoints* lidar);
   void reprojectResult();
+  void keepConfidenceOfValidPixels();
+  void dropUnconfidentPixels();
   template <typename T>
   void copyPair(ImageView<const T> left, ImageView<const T> right, Image<T>& leftOut, Image<T>& rightOut);
 
@@ -168,11 +181,13 @@ class Densifier {
   Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for
   Image<std::int16_t> disparity_;
   Image<float> depth_;
+  Image<std::uint8_t> confidence_;
   geometry::DenseCloud cloud_;
   geometry::ProjectedLidar projected_;
   DensificationTimings timings_;
   MatchMode lastMode_ = MatchMode::LidarOnly;
   bool cropToScan_ = true;
+  double minConfidence_ = kDefaultMinConfidence;
   bool computeCloud_ = true;
   bool haveCalibration_ = false;  ///< the last run had a calibration (depth and cloud possible)
 };

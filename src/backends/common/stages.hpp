@@ -10,6 +10,7 @@
 
 #include "backends/common/cost_volume.hpp"
 #include "core/baseline_ratio.hpp"
+#include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "backends/common/lidar_cost_table.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
@@ -113,6 +114,20 @@ void rightDisparityIndex(const AggregatedCostVolume& sum, int minDisparity,
 void leftRightCheck(SelectedDisparity disparity, ImageView<const std::int16_t> rightIndex,
                     ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
                     bool keepNoCounterpart);
+
+/// Confidence input 1, the shape of the aggregated cost curve at the winner b (the peak-ratio
+/// margin): m = min(255, (256 * (S2 - S1)) / max(S2, 1)), S1 = S(b), S2 = min S(d) over |d - b| > 1
+/// (outside the winner's own parabola). 0 = an ambiguous minimum (S2 = S1), 255 = no rival (also
+/// when no d lies outside +-1). 0 where bestIndex is -1 (no winner). `bestCost` receives S1 (0
+/// where there is no winner).
+void peakRatioMargin(const AggregatedCostVolume& sum, ImageView<const std::int16_t> bestIndex,
+                     ImageView<std::uint8_t> margin, ImageView<std::uint16_t> bestCost);
+
+/// Confidence input 2, left-right consistency: |bestIndex - rightIndex(x - minDisparity - best)|
+/// capped at 254; kNoCounterpartDifference where the counterpart is outside the image, the right
+/// view has no winner or the left pixel has none. Read before the left-right check invalidates.
+void leftRightDifference(ImageView<const std::int16_t> bestIndex, ImageView<const std::int16_t> rightIndex,
+                         int minDisparity, ImageView<std::uint8_t> difference);
 
 /// Median over the valid pixels of a size x size window (clamped at the border); invalid
 /// pixels stay invalid. size 0 or 1 copies.

@@ -133,6 +133,13 @@ void leftRightCheckRow(SelectedDisparity disparity, ImageView<const std::int16_t
                        ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
                        bool keepNoCounterpart, int y);
 
+// confidence_inputs.cpp: the confidence inputs of one row, from its total S (D per pixel) and
+// winners (before the left-right check).
+void peakRatioMarginRow(const std::uint16_t* totalRow, int width, int numDisparities, const std::int16_t* bestIndex,
+                        std::uint8_t* margin, std::uint16_t* bestCost);
+void leftRightDifferenceRow(const std::int16_t* bestIndex, const std::int16_t* rightIndex, int width,
+                            int minDisparity, std::uint8_t* difference);
+
 // median.cpp: one output row of the median filter; `columns`: 5 * width int16 of scratch.
 void medianRow(ImageView<const std::int16_t> in, int size, int y, std::int16_t* columns, std::int16_t* out);
 

@@ -50,6 +50,8 @@ struct CpuMatcher::Frame {
   int alphaWeight = 0;
   int verticalPaths = 1;  // per sweep: 1 with 4 paths, 3 with 8
   bool lrCheck = false;
+  bool confidence = false;    // the peak-ratio margin (core/confidence.hpp)
+  bool confidenceLr = false;  // ... and the left-right difference (not in LiDAR-only mode)
   int threads = 1;
   bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
   int planePad = 0;            // the right census planes' layout (census_cost.cpp)
@@ -101,6 +103,8 @@ void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& 
   f.paths8 = pathCostsFit8Bits(maxCost, params.P2);
   f.lrCheck = mode == MatchMode::StereoOnly ? params.lrCheck
                                             : mode == MatchMode::Fused && params.lrCheck && params.lrCheckWithLidar;
+  f.confidence = params.confidence;
+  f.confidenceLr = params.confidence && mode != MatchMode::LidarOnly;
 
   if (mode != MatchMode::LidarOnly) {
     const auto census = [&](const GrayImageView& image, Image<std::uint64_t>& out) {
@@ -236,14 +240,19 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
     resizeKeep(w.lidar, partMax);
     if (f.up) resizeKeep(w.vertical, partMax);
     resizeKeep(w.total, static_cast<std::size_t>(W) * f.D);
-    if (f.lrCheck) resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.D, f.params.minDisparity));
+    if (f.lrCheck || f.confidenceLr) resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.D, f.params.minDisparity));
     if (newLayout || w.rightward.size() != rowBytes) w.rightward.assign(rowBytes, 0xFF);
     if (newLayout || w.leftward.size() != rowBytes) w.leftward.assign(rowBytes, 0xFF);
     w.censusCostMs = w.verticalCostMs = w.lidarCostMs = w.fuseMs = w.selectMs = 0;
   }
   rawDisparity_.resize(W, H);
   bestIndex_.resize(W, H);
-  if (f.lrCheck) rightIndex_.resize(W, H);
+  if (f.lrCheck || f.confidenceLr) rightIndex_.resize(W, H);
+  if (f.confidence) {
+    confidenceInputs_.margin.resize(W, H);
+    confidenceInputs_.bestCost.resize(W, H);
+  }
+  if (f.confidenceLr) confidenceInputs_.leftRightDifference.resize(W, H);
 
   Frame frame = f;
   frame.threads = threads;
@@ -411,8 +420,17 @@ void CpuMatcher::sweepDown(const Frame& f) {
         const auto s0 = Clock::now();
         sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
                      w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y));
-        if (f.lrCheck) {
+        if (f.lrCheck || f.confidenceLr) {
           rightDisparityIndexRow(w.total.data(), W, D, p.minDisparity, w.rightScratch.data(), rightIndex_.view().row(y));
+        }
+        // The confidence inputs that need S, from the winners before the left-right check.
+        if (f.confidence) {
+          peakRatioMarginRow(w.total.data(), W, D, bestIndex_.view().row(y), confidenceInputs_.margin.view().row(y),
+                             confidenceInputs_.bestCost.view().row(y));
+        }
+        if (f.confidenceLr) {
+          leftRightDifferenceRow(bestIndex_.view().row(y), rightIndex_.view().row(y), W, p.minDisparity,
+                                 confidenceInputs_.leftRightDifference.view().row(y));
         }
         w.selectMs += msBetween(s0, Clock::now());
       }

@@ -52,6 +52,12 @@ void leftRightCheck(SelectedDisparity disparity, ImageView<const std::int16_t> r
                     ImageView<const std::uint8_t> support, int minDisparity, int disp12MaxDiff,
                     bool keepNoCounterpart, int threads);
 
+void peakRatioMargin(const AggregatedCostVolume& sum, ImageView<const std::int16_t> bestIndex,
+                     ImageView<std::uint8_t> margin, ImageView<std::uint16_t> bestCost, int threads);
+
+void leftRightDifference(ImageView<const std::int16_t> bestIndex, ImageView<const std::int16_t> rightIndex,
+                         int minDisparity, ImageView<std::uint8_t> difference, int threads);
+
 void medianFilter(ImageView<const std::int16_t> in, int size, ImageView<std::int16_t> out, int threads);
 
 }  // namespace cpu

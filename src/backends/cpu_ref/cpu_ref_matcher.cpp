@@ -1,6 +1,7 @@
 #include "backends/cpu_ref/cpu_ref_matcher.hpp"
 
 #include <chrono>
+#include <utility>
 
 #include "backends/common/stages.hpp"
 
@@ -106,12 +107,30 @@ void CpuRefMatcher::runStages(const Parameters& params, const GrayImageView& lef
   cpu_ref::selectDisparity(sum_, p.minDisparity, p.uniquenessRatio, p.subpixel, selected);
   timings_.selectDisparity = clock.lapMs();
 
+  // The confidence inputs that need S (core/confidence.hpp), read before the check invalidates.
+  const bool confidenceLr = p.confidence && mode != MatchMode::LidarOnly;
+  if (p.confidence) {
+    confidenceInputs_.margin.resize(width, height);
+    confidenceInputs_.bestCost.resize(width, height);
+    cpu_ref::peakRatioMargin(sum_, std::as_const(bestIndex_).view(), confidenceInputs_.margin.view(),
+                             confidenceInputs_.bestCost.view());
+  }
+  if (confidenceLr) {
+    rightIndex_.resize(width, height);
+    cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());
+    confidenceInputs_.leftRightDifference.resize(width, height);
+    cpu_ref::leftRightDifference(std::as_const(bestIndex_).view(), std::as_const(rightIndex_).view(), p.minDisparity,
+                                 confidenceInputs_.leftRightDifference.view());
+  }
+
   // With the up camera too, the check still compares the left and right views (the right view's
   // winners read diagonally from the same, C_S3-based, volume); the up view is not checked.
   const bool lrCheck = mode == MatchMode::StereoOnly ? p.lrCheck : mode == MatchMode::Fused && p.lrCheck && p.lrCheckWithLidar;
   if (lrCheck) {
-    rightIndex_.resize(width, height);
-    cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());
+    if (!confidenceLr) {
+      rightIndex_.resize(width, height);
+      cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());
+    }
     ImageView<const std::uint8_t> support;
     if (mode == MatchMode::Fused) {
       coverage_.resize(width, height);

@@ -183,6 +183,8 @@ void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
   }
   takeProjected();
   constexpr bool kHasIntensity = pcl::traits::has_intensity_v<PointOutT>;
+  constexpr bool kHasConfidence = pcl::traits::has_field<PointOutT, pcl::fields::confidence>::value;
+  const Image<std::uint8_t>& confidence = densifier_.confidence();
   if constexpr (kHasIntensity) mapLidarPixels();
 
   output.header = header;
@@ -206,6 +208,10 @@ void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
       }
     }
     if constexpr (kHasIntensity) q.intensity = intensityAt(pixel.x, pixel.y);
+    if constexpr (kHasConfidence) {
+      q.confidence = confidence.empty() ? std::numeric_limits<float>::quiet_NaN()
+                                        : static_cast<float>(confidence(pixel.x, pixel.y)) / 255.0f;
+    }
   }
   deinitCompute();
 }
