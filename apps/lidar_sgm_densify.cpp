@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <pcl/console/print.h>
@@ -18,6 +19,7 @@
 #include "common/tool_main.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
+#include "lidar_sgm/io/cloud_preview.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/io/pcl_image.hpp"
 #include "lidar_sgm/pcl/sgm_densification.hpp"
@@ -31,6 +33,7 @@ namespace {
 void printHelp(const char* program) {
   const lidar_sgm::geometry::ProjectionOptions projection;
   const lidar_sgm::geometry::ReprojectionOptions reprojection;
+  const lidar_sgm::io::CloudPreviewOptions preview;
   std::printf(
       "Syntax is: %s INPUT.{pcd,bin,ply} OUTPUT.{pcd,ply} -calib CALIB [-left L.png] [-right R.png] <options>\n"
       "  INPUT   the LiDAR scan: KITTI velodyne .bin, or PCD/PLY with x, y, z fields (LiDAR frame, metres)\n"
@@ -60,16 +63,25 @@ void printHelp(const char* program) {
       "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
       "                           0 = none or beyond -max_depth)\n"
       "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
+      "  -preview OUT.png         also write a picture of the dense cloud seen from above and behind the rig\n"
+      "                           (point colors, or depth colors without -left; grid every 10 m on the ground,\n"
+      "                           the rig a white triangle): sky curtains and flying points stand out\n"
+      "  -preview_size WxH        its size (default: %dx%d)\n"
+      "  -preview_height M        its camera's height above the rig camera [m] (default: %g)\n"
+      "  -preview_behind M        its camera's distance behind the rig camera [m] (default: %g)\n"
+      "  -preview_pitch DEG       its camera looks down by DEG degrees (default: %g)\n"
+      "  -preview_ground M        the ground's distance below the rig camera, for the grid [m] (default: %g)\n"
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
       projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
-      projection.occlusion.halfHeight);
+      projection.occlusion.halfHeight, preview.width, preview.height, preview.cameraHeight, preview.cameraBehind,
+      preview.pitchDeg, preview.groundBelowCamera);
 }
 
-/// "1242x375" -> (1242, 375).
-void parseImageSize(const std::string& text, int& width, int& height) {
+/// "1242x375" -> (1242, 375); `option` names the option in errors.
+void parseImageSize(const std::string& text, int& width, int& height, const char* option = "image_size") {
   const std::size_t x = text.find('x');
   try {
     std::size_t used = 0;
@@ -79,9 +91,11 @@ void parseImageSize(const std::string& text, int& width, int& height) {
     height = std::stoi(text.substr(x + 1), &used);
     if (used != text.size() - x - 1) throw std::invalid_argument("trailing");
   } catch (const std::exception&) {
-    throw std::invalid_argument("option -image_size: '" + text + "' is not WIDTHxHEIGHT (e.g. 1242x375)");
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' is not WIDTHxHEIGHT (e.g. 1242x375)");
   }
-  if (width <= 0 || height <= 0) throw std::invalid_argument("option -image_size: '" + text + "' must be positive");
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' must be positive");
+  }
 }
 
 struct OutputOptions {
@@ -111,6 +125,39 @@ OutputOptions outputOptionsFrom(const Arguments& args) {
   o.stride = args.integer("stride", o.stride);
   if (o.stride < 1) throw std::invalid_argument("option -stride: must be >= 1");
   return o;
+}
+
+/// -preview_* (checked before any file is read); the cloud's -max_depth bounds the picture too.
+lidar_sgm::io::CloudPreviewOptions previewOptionsFrom(const Arguments& args) {
+  lidar_sgm::io::CloudPreviewOptions o;
+  if (args.has("preview_size")) parseImageSize(args.text("preview_size", ""), o.width, o.height, "preview_size");
+  o.cameraHeight = args.number("preview_height", o.cameraHeight);
+  o.cameraBehind = args.number("preview_behind", o.cameraBehind);
+  o.pitchDeg = args.number("preview_pitch", o.pitchDeg);
+  o.groundBelowCamera = args.number("preview_ground", o.groundBelowCamera);
+  const double maxDepth = args.number("max_depth", o.maxDepth);
+  if (maxDepth > 0.0) o.maxDepth = maxDepth;
+  try {
+    lidar_sgm::io::validate(o);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("option -preview_*: ") + e.what());
+  }
+  return o;
+}
+
+/// The dense cloud's points in the rig camera frame, with their colors when it has any.
+template <typename PointT>
+void previewPoints(const pcl::PointCloud<PointT>& dense, lidar_sgm::geometry::OutputFrame frame,
+                   const lidar_sgm::geometry::StereoCalibration& calibration, std::vector<Eigen::Vector3f>& points,
+                   std::vector<lidar_sgm::Rgb8>& colors) {
+  Eigen::Matrix4f toCamera = Eigen::Matrix4f::Identity();
+  if (frame == lidar_sgm::geometry::OutputFrame::Lidar) toCamera = calibration.T_cam_lidar.matrix().cast<float>();
+  points.reserve(dense.size());
+  for (const PointT& p : dense.points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+    points.push_back((toCamera * Eigen::Vector4f(p.x, p.y, p.z, 1.0f)).template head<3>());
+    if constexpr (std::is_same_v<PointT, pcl::PointXYZRGB>) colors.push_back({p.r, p.g, p.b});
+  }
 }
 
 std::size_t validPixels(const lidar_sgm::Image<std::int16_t>& disparity) {
@@ -183,6 +230,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const std::string disparityPath = args.text("disparity", "");
   const std::string colorPath = args.text("color", "");
   const std::string depthPath = args.text("depth", "");
+  const std::string previewPath = args.text("preview", "");
   Timer saveTimer;
   std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
@@ -201,6 +249,19 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
         colorPath, lidar_sgm::io::colorizeDisparity(used.view(), params.minDisparity + params.numDisparities));
   }
   std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
+  if (!previewPath.empty()) {
+    std::printf("Drawing %s", previewPath.c_str());
+    std::fflush(stdout);
+    std::vector<Eigen::Vector3f> points;
+    std::vector<lidar_sgm::Rgb8> colors;
+    previewPoints(dense, out.frame, sgm.getCalibration(), points, colors);
+    Timer renderTimer;
+    const cv::Mat picture = lidar_sgm::io::renderCloudPreview(points, colors, previewOptionsFrom(args));
+    const double renderMs = renderTimer.elapsedMs();
+    lidar_sgm::io::writeImageAtomically(previewPath, picture);
+    std::printf(" [done, %.0f ms : %zu points rendered in %.1f ms, %dx%d]\n", renderTimer.elapsedMs(), points.size(),
+                renderMs, picture.cols, picture.rows);
+  }
   return 0;
 }
 
@@ -209,7 +270,8 @@ int run(int argc, char** argv) {
   const Arguments args(argc, argv,
                        joined(lidar_sgm::apps::sgmValueOptions(),
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
-                               "disparity", "depth", "color"}),
+                               "disparity", "depth", "color", "preview", "preview_size", "preview_height",
+                               "preview_behind", "preview_pitch", "preview_ground"}),
                        joined(lidar_sgm::apps::sgmFlagOptions(),
                               {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
@@ -229,7 +291,7 @@ int run(int argc, char** argv) {
   const std::vector<std::string> inputs{inputPath, calibPath, leftPath, rightPath};
   lidar_sgm::apps::requireOutput(outPath, {".pcd", ".ply"}, inputs);
   std::vector<std::string> outputs{outPath};
-  for (const char* option : {"disparity", "depth", "color"}) {
+  for (const char* option : {"disparity", "depth", "color", "preview"}) {
     const std::string path = args.text(option, "");
     if (path.empty()) continue;
     lidar_sgm::apps::requireOutput(path, {".png"}, inputs);
@@ -250,6 +312,7 @@ int run(int argc, char** argv) {
   lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
   lidar_sgm::apps::backendFrom(args);
   outputOptionsFrom(args);
+  previewOptionsFrom(args);
   int width = 0;
   int height = 0;
   if (args.has("image_size")) parseImageSize(args.text("image_size", ""), width, height);
