@@ -91,7 +91,8 @@ void parseImageSize(const std::string& text, int& width, int& height, const char
     height = std::stoi(text.substr(x + 1), &used);
     if (used != text.size() - x - 1) throw std::invalid_argument("trailing");
   } catch (const std::exception&) {
-    throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' is not WIDTHxHEIGHT (e.g. 1242x375)");
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text +
+                                "' is not WIDTHxHEIGHT (e.g. 1242x375)");
   }
   if (width <= 0 || height <= 0) {
     throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' must be positive");

@@ -192,7 +192,8 @@ TEST_F(DensifyCli, PreviewDrawsThePointsWhereTheyProjectInEitherFrame) {
   EXPECT_EQ(readText(p("a.png")), readText(p("b.png")));
 
   // Where the points land: most visible points show their own color at their hand-computed
-  // pixel (the rest are hidden behind nearer ones; measured 45 %); one degree of pitch off, far fewer (13 %).
+  // pixel (the rest are hidden behind nearer ones; measured 45 %); one degree of pitch off, far
+  // fewer (13 %).
   pcl::PointCloud<pcl::PointXYZRGB> cloud;
   ASSERT_EQ(pcl::io::loadPCDFile<pcl::PointXYZRGB>(p("camera.pcd"), cloud), 0);
   ASSERT_GT(cloud.size(), 1000u);
@@ -528,7 +529,8 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -preview_pitch 95", "pitch");
   expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -preview_height high", "preview_height");
   // Nothing to draw: the empty cloud is named, and no picture is left.
-  expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -max_depth 0.01", "the dense cloud is empty");
+  expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -max_depth 0.01",
+                "the dense cloud is empty");
 
   // Parameters.
   expectFailure(kScan + out + calib + pair + " -alpha 1.5", "alpha = 1.5");

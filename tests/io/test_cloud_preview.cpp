@@ -138,8 +138,9 @@ TEST(CloudPreview, WithoutColorsDepthIsColorMappedAndFarPointsAreDropped) {
   // Beyond maxDepth, non-finite, or behind the virtual camera: nothing drawn.
   o.maxDepth = 50.0;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  const cv::Mat none =
-      io::renderCloudPreview({Eigen::Vector3f(0, 1, 70), Eigen::Vector3f(nan, 0, 10), Eigen::Vector3f(0, 0, -40)}, {}, o);
+  const std::vector<Eigen::Vector3f> hidden{Eigen::Vector3f(0, 1, 70), Eigen::Vector3f(nan, 0, 10),
+                                            Eigen::Vector3f(0, 0, -40)};
+  const cv::Mat none = io::renderCloudPreview(hidden, {}, o);
   EXPECT_EQ(pixelsOfColor(none, empty), static_cast<std::size_t>(o.width * o.height));
 }
 
