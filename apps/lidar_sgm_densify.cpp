@@ -66,6 +66,9 @@ void printHelp(const char* program) {
       "  -preview OUT.png         also write a picture of the dense cloud seen from above and behind the rig\n"
       "                           (point colors, or depth colors without -left; grid every 10 m on the ground,\n"
       "                           the rig a white triangle): sky curtains and flying points stand out\n"
+      "  -preview_color image|depth\n"
+      "                           its colors: the points' (from -left; depth without it) or depth, blue near ...\n"
+      "                           red at -max_depth (default: image)\n"
       "  -preview_size WxH        its size (default: %dx%d)\n"
       "  -preview_height M        its camera's height above the rig camera [m] (default: %g)\n"
       "  -preview_behind M        its camera's distance behind the rig camera [m] (default: %g)\n"
@@ -136,6 +139,10 @@ lidar_sgm::io::CloudPreviewOptions previewOptionsFrom(const Arguments& args) {
   o.cameraBehind = args.number("preview_behind", o.cameraBehind);
   o.pitchDeg = args.number("preview_pitch", o.pitchDeg);
   o.groundBelowCamera = args.number("preview_ground", o.groundBelowCamera);
+  const std::string color = args.text("preview_color", "image");
+  if (color != "image" && color != "depth") {
+    throw std::invalid_argument("option -preview_color: '" + color + "' must be image or depth");
+  }
   const double maxDepth = args.number("max_depth", o.maxDepth);
   if (maxDepth > 0.0) o.maxDepth = maxDepth;
   try {
@@ -256,6 +263,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
     std::vector<Eigen::Vector3f> points;
     std::vector<lidar_sgm::Rgb8> colors;
     previewPoints(dense, out.frame, sgm.getCalibration(), points, colors);
+    if (args.text("preview_color", "image") == "depth") colors.clear();
     Timer renderTimer;
     const cv::Mat picture = lidar_sgm::io::renderCloudPreview(points, colors, previewOptionsFrom(args));
     const double renderMs = renderTimer.elapsedMs();
@@ -271,7 +279,7 @@ int run(int argc, char** argv) {
   const Arguments args(argc, argv,
                        joined(lidar_sgm::apps::sgmValueOptions(),
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
-                               "disparity", "depth", "color", "preview", "preview_size", "preview_height",
+                               "disparity", "depth", "color", "preview", "preview_color", "preview_size", "preview_height",
                                "preview_behind", "preview_pitch", "preview_ground"}),
                        joined(lidar_sgm::apps::sgmFlagOptions(),
                               {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));

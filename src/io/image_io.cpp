@@ -181,11 +181,13 @@ cv::Mat quantiseColors(const cv::Mat& image, int levels) {
   return quantised;
 }
 
-void writeImageAtomically(const std::string& path, const cv::Mat& image) {
+void writeImageAtomically(const std::string& path, const cv::Mat& image) { writeImageAtomically(path, image, {}); }
+
+void writeImageAtomically(const std::string& path, const cv::Mat& image, const std::vector<int>& params) {
   const std::string temporary = detail::temporaryPathFor(path);
   bool written = false;
   try {
-    written = cv::imwrite(temporary, image);
+    written = cv::imwrite(temporary, image, params);
   } catch (const cv::Exception& e) {
     detail::discardTemporary(temporary);
     throw std::runtime_error("cannot write '" + path + "': " + e.what());

@@ -142,7 +142,7 @@ TEST_F(DensifyCli, HelpListsTheOptions) {
                              "-format binary|compressed|ascii", "(default: binary)", "-scale 1|0.5", "-threads N",
                              "0 = all hardware threads", "-backend", "cpu_ref, cpu", "-preview OUT.png",
                              "-preview_size WxH", "(default: 960x600)", "-preview_height M", "-preview_behind M",
-                             "-preview_pitch DEG", "-preview_ground M"}) {
+                             "-preview_pitch DEG", "-preview_ground M", "-preview_color image|depth"}) {
     EXPECT_NE(r.output.find(option), std::string::npos) << option;
   }
 }
@@ -203,10 +203,15 @@ TEST_F(DensifyCli, PreviewDrawsThePointsWhereTheyProjectInEitherFrame) {
   EXPECT_GT(atTheirPixel, 2.0 * pitchedOff) << atTheirPixel << " vs " << pitchedOff;
 }
 
-TEST_F(DensifyCli, PreviewWithoutImagesIsDepthColored) {
+TEST_F(DensifyCli, PreviewWithoutImagesOrAskedForIsDepthColored) {
   const RunResult r = runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -image_size 1242x375 -preview " +
                               p("a.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
+  // With the left image but -preview_color depth: the same picture (LiDAR-only both times).
+  const RunResult colored = runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft +
+                                    " -preview_color depth -preview " + p("b.png"));
+  ASSERT_EQ(colored.exitCode, 0) << colored.output;
+  EXPECT_EQ(readText(p("a.png")), readText(p("b.png")));
   const cv::Mat preview = cv::imread(p("a.png"), cv::IMREAD_UNCHANGED);
   ASSERT_EQ(preview.type(), CV_8UC3);
   EXPECT_EQ(preview.cols, 960);
@@ -527,6 +532,8 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
                 "option -preview_*: cloud preview: the picture size 8x8");
   expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -preview_size 640", "option -preview_size");
   expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -preview_pitch 95", "pitch");
+  expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -preview_color gray",
+                "option -preview_color: 'gray' must be image or depth");
   expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -preview_height high", "preview_height");
   // Nothing to draw: the empty cloud is named, and no picture is left.
   expectFailure(kScan + out + calib + pair + " -preview " + p("v.png") + " -max_depth 0.01",

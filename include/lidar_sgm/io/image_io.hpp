@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -65,6 +66,9 @@ cv::Mat quantiseColors(const cv::Mat& image, int levels);
 /// Writes through a temporary file in the same directory, renamed over `path` only once the
 /// image is complete, so a crash never leaves a partial file. Throws std::runtime_error.
 void writeImageAtomically(const std::string& path, const cv::Mat& image);
+/// The same with OpenCV's imwrite parameters, e.g. {cv::IMWRITE_PNG_COMPRESSION, 9} for the
+/// smallest PNG (OpenCV's default level, 1, favours speed).
+void writeImageAtomically(const std::string& path, const cv::Mat& image, const std::vector<int>& params);
 
 }  // namespace io
 }  // namespace lidar_sgm
