@@ -239,6 +239,20 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const std::string colorPath = args.text("color", "");
   const std::string depthPath = args.text("depth", "");
   const std::string previewPath = args.text("preview", "");
+  // Drawn before anything is written, so a failure cannot leave the cloud without its picture.
+  cv::Mat preview;
+  if (!previewPath.empty()) {
+    Timer previewTimer;
+    std::printf("Drawing the preview");
+    std::fflush(stdout);
+    std::vector<Eigen::Vector3f> points;
+    std::vector<lidar_sgm::Rgb8> colors;
+    previewPoints(dense, out.frame, sgm.getCalibration(), points, colors);
+    if (args.text("preview_color", "image") == "depth") colors.clear();
+    preview = lidar_sgm::io::renderCloudPreview(points, colors, previewOptionsFrom(args));
+    std::printf(" [done, %.1f ms : %zu points, %dx%d]\n", previewTimer.elapsedMs(), points.size(), preview.cols,
+                preview.rows);
+  }
   Timer saveTimer;
   std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
@@ -256,21 +270,11 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
     lidar_sgm::io::writeImageAtomically(
         colorPath, lidar_sgm::io::colorizeDisparity(used.view(), params.minDisparity + params.numDisparities));
   }
-  std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
   if (!previewPath.empty()) {
-    std::printf("Drawing %s", previewPath.c_str());
-    std::fflush(stdout);
-    std::vector<Eigen::Vector3f> points;
-    std::vector<lidar_sgm::Rgb8> colors;
-    previewPoints(dense, out.frame, sgm.getCalibration(), points, colors);
-    if (args.text("preview_color", "image") == "depth") colors.clear();
-    Timer renderTimer;
-    const cv::Mat picture = lidar_sgm::io::renderCloudPreview(points, colors, previewOptionsFrom(args));
-    const double renderMs = renderTimer.elapsedMs();
-    lidar_sgm::io::writeImageAtomically(previewPath, picture);
-    std::printf(" [done, %.0f ms : %zu points rendered in %.1f ms, %dx%d]\n", renderTimer.elapsedMs(), points.size(),
-                renderMs, picture.cols, picture.rows);
+    std::printf(", %s", previewPath.c_str());
+    lidar_sgm::io::writeImageAtomically(previewPath, preview);
   }
+  std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
   return 0;
 }
 

@@ -178,7 +178,8 @@ TEST_F(DensifyCli, PreviewDrawsThePointsWhereTheyProjectInEitherFrame) {
                              " -preview_size 481x301 -preview_height 12 -preview_behind 20 -preview_pitch 15";
   const RunResult camera = runTool(kScan + " " + p("camera.pcd") + common + " -frame camera -preview " + p("a.png"));
   ASSERT_EQ(camera.exitCode, 0) << camera.output;
-  EXPECT_NE(camera.output.find("Drawing " + p("a.png") + " [done"), std::string::npos) << camera.output;
+  EXPECT_NE(camera.output.find("Drawing the preview [done"), std::string::npos) << camera.output;
+  EXPECT_NE(camera.output.find(", " + p("a.png") + " [done"), std::string::npos) << camera.output;
   const RunResult lidar = runTool(kScan + " " + p("lidar.pcd") + common + " -preview " + p("b.png"));
   ASSERT_EQ(lidar.exitCode, 0) << lidar.output;
   EXPECT_TRUE(hiddenFiles().empty());
