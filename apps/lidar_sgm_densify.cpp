@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <pcl/console/print.h>
@@ -18,6 +19,7 @@
 #include "common/tool_main.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
+#include "lidar_sgm/io/cloud_preview.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/io/pcl_image.hpp"
 #include "lidar_sgm/pcl/sgm_densification.hpp"
@@ -31,6 +33,7 @@ namespace {
 void printHelp(const char* program) {
   const lidar_sgm::geometry::ProjectionOptions projection;
   const lidar_sgm::geometry::ReprojectionOptions reprojection;
+  const lidar_sgm::io::CloudPreviewOptions preview;
   std::printf(
       "Syntax is: %s INPUT.{pcd,bin,ply} OUTPUT.{pcd,ply} -calib CALIB [-left L.png] [-right R.png] <options>\n"
       "  INPUT   the LiDAR scan: KITTI velodyne .bin, or PCD/PLY with x, y, z fields (LiDAR frame, metres)\n"
@@ -63,16 +66,28 @@ void printHelp(const char* program) {
       "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -confidence OUT.png      also write the confidence (8-bit gray: 255 x the probability that the\n"
       "                           disparity is right, 0 = none)\n"
+      "  -preview OUT.png         also write a picture of the dense cloud seen from above and behind the rig\n"
+      "                           (point colors, or depth colors without -left; grid every 10 m on the ground,\n"
+      "                           the rig a white triangle): sky curtains and flying points stand out\n"
+      "  -preview_color image|depth\n"
+      "                           its colors: the points' (from -left; depth without it) or depth, blue near ...\n"
+      "                           red at -max_depth (default: image)\n"
+      "  -preview_size WxH        its size (default: %dx%d)\n"
+      "  -preview_height M        its camera's height above the rig camera [m] (default: %g)\n"
+      "  -preview_behind M        its camera's distance behind the rig camera [m] (default: %g)\n"
+      "  -preview_pitch DEG       its camera looks down by DEG degrees (default: %g)\n"
+      "  -preview_ground M        the ground's distance below the rig camera, for the grid [m] (default: %g)\n"
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
       projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
-      projection.occlusion.halfHeight);
+      projection.occlusion.halfHeight, preview.width, preview.height, preview.cameraHeight, preview.cameraBehind,
+      preview.pitchDeg, preview.groundBelowCamera);
 }
 
-/// "1242x375" -> (1242, 375).
-void parseImageSize(const std::string& text, int& width, int& height) {
+/// "1242x375" -> (1242, 375); `option` names the option in errors.
+void parseImageSize(const std::string& text, int& width, int& height, const char* option = "image_size") {
   const std::size_t x = text.find('x');
   try {
     std::size_t used = 0;
@@ -82,9 +97,12 @@ void parseImageSize(const std::string& text, int& width, int& height) {
     height = std::stoi(text.substr(x + 1), &used);
     if (used != text.size() - x - 1) throw std::invalid_argument("trailing");
   } catch (const std::exception&) {
-    throw std::invalid_argument("option -image_size: '" + text + "' is not WIDTHxHEIGHT (e.g. 1242x375)");
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text +
+                                "' is not WIDTHxHEIGHT (e.g. 1242x375)");
   }
-  if (width <= 0 || height <= 0) throw std::invalid_argument("option -image_size: '" + text + "' must be positive");
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' must be positive");
+  }
 }
 
 struct OutputOptions {
@@ -114,6 +132,43 @@ OutputOptions outputOptionsFrom(const Arguments& args) {
   o.stride = args.integer("stride", o.stride);
   if (o.stride < 1) throw std::invalid_argument("option -stride: must be >= 1");
   return o;
+}
+
+/// -preview_* (checked before any file is read); the cloud's -max_depth bounds the picture too.
+lidar_sgm::io::CloudPreviewOptions previewOptionsFrom(const Arguments& args) {
+  lidar_sgm::io::CloudPreviewOptions o;
+  if (args.has("preview_size")) parseImageSize(args.text("preview_size", ""), o.width, o.height, "preview_size");
+  o.cameraHeight = args.number("preview_height", o.cameraHeight);
+  o.cameraBehind = args.number("preview_behind", o.cameraBehind);
+  o.pitchDeg = args.number("preview_pitch", o.pitchDeg);
+  o.groundBelowCamera = args.number("preview_ground", o.groundBelowCamera);
+  const std::string color = args.text("preview_color", "image");
+  if (color != "image" && color != "depth") {
+    throw std::invalid_argument("option -preview_color: '" + color + "' must be image or depth");
+  }
+  const double maxDepth = args.number("max_depth", o.maxDepth);
+  if (maxDepth > 0.0) o.maxDepth = maxDepth;
+  try {
+    lidar_sgm::io::validate(o);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("option -preview_*: ") + e.what());
+  }
+  return o;
+}
+
+/// The dense cloud's points in the rig camera frame, with their colors when it has any.
+template <typename PointT>
+void previewPoints(const pcl::PointCloud<PointT>& dense, lidar_sgm::geometry::OutputFrame frame,
+                   const lidar_sgm::geometry::StereoCalibration& calibration, std::vector<Eigen::Vector3f>& points,
+                   std::vector<lidar_sgm::Rgb8>& colors) {
+  Eigen::Matrix4f toCamera = Eigen::Matrix4f::Identity();
+  if (frame == lidar_sgm::geometry::OutputFrame::Lidar) toCamera = calibration.T_cam_lidar.matrix().cast<float>();
+  points.reserve(dense.size());
+  for (const PointT& p : dense.points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+    points.push_back((toCamera * Eigen::Vector4f(p.x, p.y, p.z, 1.0f)).template head<3>());
+    if constexpr (pcl::traits::has_color_v<PointT>) colors.push_back({p.r, p.g, p.b});
+  }
 }
 
 std::size_t validPixels(const lidar_sgm::Image<std::int16_t>& disparity) {
@@ -188,6 +243,21 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const std::string colorPath = args.text("color", "");
   const std::string depthPath = args.text("depth", "");
   const std::string confidencePath = args.text("confidence", "");
+  const std::string previewPath = args.text("preview", "");
+  // Drawn before anything is written, so a failure cannot leave the cloud without its picture.
+  cv::Mat preview;
+  if (!previewPath.empty()) {
+    Timer previewTimer;
+    std::printf("Drawing the preview");
+    std::fflush(stdout);
+    std::vector<Eigen::Vector3f> points;
+    std::vector<lidar_sgm::Rgb8> colors;
+    previewPoints(dense, out.frame, sgm.getCalibration(), points, colors);
+    if (args.text("preview_color", "image") == "depth") colors.clear();
+    preview = lidar_sgm::io::renderCloudPreview(points, colors, previewOptionsFrom(args));
+    std::printf(" [done, %.1f ms : %zu points, %dx%d]\n", previewTimer.elapsedMs(), points.size(), preview.cols,
+                preview.rows);
+  }
   Timer saveTimer;
   std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
@@ -210,6 +280,10 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
     lidar_sgm::io::writeImageAtomically(
         colorPath, lidar_sgm::io::colorizeDisparity(used.view(), params.minDisparity + params.numDisparities));
   }
+  if (!previewPath.empty()) {
+    std::printf(", %s", previewPath.c_str());
+    lidar_sgm::io::writeImageAtomically(previewPath, preview);
+  }
   std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
   return 0;
 }
@@ -219,7 +293,8 @@ int run(int argc, char** argv) {
   const Arguments args(argc, argv,
                        joined(lidar_sgm::apps::sgmValueOptions(),
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
-                               "disparity", "depth", "color", "confidence"}),
+                               "disparity", "depth", "color", "confidence", "preview", "preview_color",
+                               "preview_size", "preview_height", "preview_behind", "preview_pitch", "preview_ground"}),
                        joined(lidar_sgm::apps::sgmFlagOptions(),
                               {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
@@ -242,7 +317,7 @@ int run(int argc, char** argv) {
   if (args.has("confidence") && args.has("no_confidence")) {
     throw std::invalid_argument("-confidence OUT.png needs the confidence, which -no_confidence turns off");
   }
-  for (const char* option : {"disparity", "depth", "color", "confidence"}) {
+  for (const char* option : {"disparity", "depth", "color", "confidence", "preview"}) {
     const std::string path = args.text(option, "");
     if (path.empty()) continue;
     lidar_sgm::apps::requireOutput(path, {".png"}, inputs);
@@ -263,6 +338,7 @@ int run(int argc, char** argv) {
   lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
   lidar_sgm::apps::backendFrom(args);
   outputOptionsFrom(args);
+  previewOptionsFrom(args);
   int width = 0;
   int height = 0;
   if (args.has("image_size")) parseImageSize(args.text("image_size", ""), width, height);

@@ -175,11 +175,28 @@ cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxD
   return color;
 }
 
-void writeImageAtomically(const std::string& path, const cv::Mat& image) {
+cv::Mat quantiseColors(const cv::Mat& image, int levels) {
+  if (levels < 2 || levels > 256) {
+    throw std::invalid_argument("quantiseColors: levels must be 2..256, got " + std::to_string(levels));
+  }
+  if (image.depth() != CV_8U) throw std::invalid_argument("quantiseColors: expected an 8-bit image");
+  cv::Mat table(1, 256, CV_8UC1);
+  for (int i = 0; i < 256; ++i) {
+    const double step = std::round(i * (levels - 1) / 255.0);  // the nearest of the levels
+    table.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(std::lround(step * 255.0 / (levels - 1)));
+  }
+  cv::Mat quantised;
+  cv::LUT(image, table, quantised);
+  return quantised;
+}
+
+void writeImageAtomically(const std::string& path, const cv::Mat& image) { writeImageAtomically(path, image, {}); }
+
+void writeImageAtomically(const std::string& path, const cv::Mat& image, const std::vector<int>& params) {
   const std::string temporary = detail::temporaryPathFor(path);
   bool written = false;
   try {
-    written = cv::imwrite(temporary, image);
+    written = cv::imwrite(temporary, image, params);
   } catch (const cv::Exception& e) {
     detail::discardTemporary(temporary);
     throw std::runtime_error("cannot write '" + path + "': " + e.what());

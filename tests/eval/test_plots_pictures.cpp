@@ -6,8 +6,17 @@
 #include <stdexcept>
 #include <vector>
 
-#include <opencv2/core.hpp>
+#include <filesystem>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "eval/frame_pictures.hpp"
+#include "lidar_sgm/eval/alpha_sweep.hpp"
 #include "eval/pictures.hpp"
 #include "eval/plots.hpp"
 
@@ -187,6 +196,60 @@ TEST(Stack, SumsHeightsAndMatchesWidths) {
   EXPECT_EQ(stacked.size(), cv::Size(100, 30 + 20 + 20));
   EXPECT_EQ(stacked.at<cv::Vec3b>(35, 50), cv::Vec3b(9, 9, 9));
   EXPECT_TRUE(stack({}).empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// writeFramePictures
+
+TEST(FramePictures, HalfSizeQuantisedAndSmallEvenForNoisyMaps) {
+  // A KITTI-sized frame whose stereo-only result is pure noise (the worst case for PNG), under
+  // a smooth left image.
+  constexpr int kW = 1242;
+  constexpr int kH = 375;
+  EvalFrame frame;
+  frame.dataset = "kitti2015";
+  frame.name = "000000_10";
+  frame.leftColor = cv::Mat(kH, kW, CV_8UC3);
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) frame.leftColor.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<std::uint8_t>(x % 256), static_cast<std::uint8_t>(y % 256), 90);
+  }
+  frame.groundTruth = Image<float>(kW, kH, 0.0f);
+  for (int y = kH / 3; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) frame.groundTruth(x, y) = 5.0f + 0.1f * static_cast<float>(y);
+  }
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> noise(0, 128 * kDisparityScale);
+  Image<std::int16_t> stereo(kW, kH);
+  Image<std::int16_t> fused(kW, kH);
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      stereo(x, y) = static_cast<std::int16_t>(noise(random));
+      fused(x, y) = static_cast<std::int16_t>(std::lround((5.0 + 0.1 * y) * kDisparityScale));
+    }
+  }
+  const std::vector<std::pair<Method, Image<std::int16_t>>> disparities{
+      {Method{MethodKind::StereoSgm, 0.0}, stereo}, {Method{MethodKind::FusedSgm, kPaperAlpha}, fused}};
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lidar_sgm_frame_pictures";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  writeFramePictures(dir.string(), frame, disparities);
+
+  for (const std::string name : {"kitti2015_000000_10.png", "kitti2015_000000_10_stereo_vs_fused.png"}) {
+    const std::filesystem::path path = dir / name;
+    ASSERT_TRUE(std::filesystem::exists(path)) << path;
+    const cv::Mat picture = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(picture.type(), CV_8UC3) << name;
+    EXPECT_EQ(picture.cols, kW / 2) << name;
+    EXPECT_LT(std::filesystem::file_size(path), 500u * 1024u) << name;
+    std::set<int> values;  // 32 levels per channel
+    for (int y = 0; y < picture.rows; ++y) {
+      for (int x = 0; x < picture.cols; ++x) {
+        for (int c = 0; c < 3; ++c) values.insert(picture.at<cv::Vec3b>(y, x)[c]);
+      }
+    }
+    EXPECT_LE(values.size(), 32u) << name;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

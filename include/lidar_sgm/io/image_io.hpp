@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -60,9 +61,18 @@ cv::Mat toConfidencePng(ImageView<const std::uint8_t> confidence);
 /// Color picture of x16 disparities (turbo color map, 0 .. maxDisparity), invalid pixels black.
 cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxDisparity);
 
+/// An 8-bit picture with each channel rounded to `levels` evenly spaced values (0 and 255
+/// kept): fewer distinct colors make a PNG for the docs several times smaller. levels in
+/// [2, 256] (256: an unchanged copy); throws std::invalid_argument otherwise or for a non-8-bit
+/// image.
+cv::Mat quantiseColors(const cv::Mat& image, int levels);
+
 /// Writes through a temporary file in the same directory, renamed over `path` only once the
 /// image is complete, so a crash never leaves a partial file. Throws std::runtime_error.
 void writeImageAtomically(const std::string& path, const cv::Mat& image);
+/// The same with OpenCV's imwrite parameters, e.g. {cv::IMWRITE_PNG_COMPRESSION, 9} for the
+/// smallest PNG (OpenCV's default level, 1, favours speed).
+void writeImageAtomically(const std::string& path, const cv::Mat& image, const std::vector<int>& params);
 
 }  // namespace io
 }  // namespace lidar_sgm
