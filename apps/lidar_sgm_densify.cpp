@@ -188,6 +188,8 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const lidar_sgm::Parameters params = lidar_sgm::apps::parametersFrom(args);
   sgm.setParameters(params);
   sgm.setBackend(lidar_sgm::apps::backendFrom(args));
+  sgm.setDisparityRangeMode(lidar_sgm::apps::fixedDisparityRange(args) ? lidar_sgm::DisparityRangeMode::Fixed
+                                                                        : lidar_sgm::DisparityRangeMode::FromLidar);
   lidar_sgm::geometry::ProjectionOptions projection;
   projection.occlusion.enabled = !args.has("no_occlusion_filter");
   sgm.setProjectionOptions(projection);
@@ -229,12 +231,14 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const auto& timings = sgm.getTimings();
   const auto& stats = sgm.getProjectedLidar().stats;
   const auto& used = sgm.getDisparityImage();
+  const lidar_sgm::geometry::DisparityRange& range = sgm.getUsedDisparityRange();  // what was matched
   std::printf("Projecting [done, %.0f ms : %s]\n", timings.project, stats.describe().c_str());
   std::printf("Matching (%s, alpha %g%s) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity]\n",
               lidar_sgm::toString(sgm.getLastMode()).c_str(),
               sgm.getLastMode() == lidar_sgm::MatchMode::Fused ? params.alpha : 1.0,
               params.scale == 1.0f ? "" : ", matched at scale 0.5", timings.match, used.width(),
               used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()));
+  std::printf("disparity range: %s\n", sgm.getUsedDisparityRange().describe().c_str());
   std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
               dense.width, dense.height, frame.c_str());
 
@@ -278,7 +282,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
     lidar_sgm::io::writeImageAtomically(
-        colorPath, lidar_sgm::io::colorizeDisparity(used.view(), params.minDisparity + params.numDisparities));
+        colorPath, lidar_sgm::io::colorizeDisparity(used.view(), range.minDisparity + range.numDisparities));
   }
   if (!previewPath.empty()) {
     std::printf(", %s", previewPath.c_str());
@@ -337,6 +341,7 @@ int run(int argc, char** argv) {
   }
   lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
   lidar_sgm::apps::backendFrom(args);
+  lidar_sgm::apps::fixedDisparityRange(args);
   outputOptionsFrom(args);
   previewOptionsFrom(args);
   int width = 0;

@@ -99,6 +99,7 @@ int run(int argc, char** argv) {
   }
   const lidar_sgm::Parameters params = parametersFrom(args);
   const lidar_sgm::Backend backend = lidar_sgm::apps::backendFrom(args);
+  const bool fixedRange = lidar_sgm::apps::fixedDisparityRange(args);
 
   Timer loadTimer;
   std::printf("Loading %s", leftPath.c_str());
@@ -129,6 +130,8 @@ int run(int argc, char** argv) {
   lidar_sgm::Densifier densifier;
   densifier.setParameters(params);
   densifier.setBackend(backend);
+  densifier.setDisparityRangeMode(fixedRange ? lidar_sgm::DisparityRangeMode::Fixed
+                                             : lidar_sgm::DisparityRangeMode::FromLidar);
   densifier.setComputeCloud(false);
   densifier.setCropToScan(!args.has("no_crop_to_scan"));
   densifier.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
@@ -147,13 +150,15 @@ int run(int argc, char** argv) {
               densifier.lastMode() == lidar_sgm::MatchMode::Fused ? params.alpha
               : densifier.lastMode() == lidar_sgm::MatchMode::LidarOnly ? 1.0 : 0.0,
               params.scale == 1.0f ? "" : ", matched at scale 0.5", sgmTimer.elapsedMs(), densifier.validPercent());
+  std::printf("disparity range: %s\n", densifier.usedDisparityRange().describe().c_str());
 
   Timer saveTimer;
   std::printf("Saving %s", outPath.c_str());
   lidar_sgm::io::writeImageAtomically(outPath, lidar_sgm::io::toKittiDisparity(disparity.view()));
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
-    const double maxDisparity = params.minDisparity + params.numDisparities;
+    const lidar_sgm::Parameters& used = densifier.usedParameters();  // the range matched, e.g. from the LiDAR
+    const double maxDisparity = used.minDisparity + used.numDisparities;
     lidar_sgm::io::writeImageAtomically(colorPath, lidar_sgm::io::colorizeDisparity(disparity.view(), maxDisparity));
   }
   if (!confidencePath.empty()) {

@@ -32,6 +32,9 @@ FrameRunner::FrameRunner(Backend backend, const Parameters& params, const Frame&
   Densifier& d = impl_->densifier;
   d.setBackend(backend);
   d.setParameters(params);
+  // The paper's fixed range, not the frame's LiDAR's: the bench times a given search range and
+  // compares with OpenCV SGBM at the same one.
+  d.setDisparityRangeMode(DisparityRangeMode::Fixed);
   d.setComputeCloud(false);
   if (mode != MatchMode::LidarOnly) d.setStereoPair(frame.left.view(), frame.right.view());
   impl_->lidar = mode == MatchMode::StereoOnly ? nullptr : &frame.lidar;

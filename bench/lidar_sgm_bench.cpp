@@ -222,7 +222,9 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
   std::printf("  image:        %s, 8-bit gray; %zu LiDAR points (%.2f %% of the pixels)\n",
               sizeText(frame.width(), frame.height()).c_str(), frame.lidar.size(),
               100.0 * static_cast<double>(frame.lidar.size()) / (static_cast<double>(frame.width()) * frame.height()));
-  std::printf("  disparities:  %d (from %d)\n", base.numDisparities, base.minDisparity);
+  std::printf("  disparities:  %d (from %d), fixed: the tools take the range from the LiDAR by default,\n"
+              "                the bench times a given one (OpenCV SGBM searches the same)\n",
+              base.numDisparities, base.minDisparity);
   std::printf("  paths:        %d (8 in the \"fused, 8 paths\" row)\n", base.paths);
   std::printf("  mode:         ");
   for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());

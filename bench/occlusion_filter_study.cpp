@@ -133,6 +133,7 @@ void synthetic(int seeds, std::size_t settingCount) {
       densifier.setCalibration(calib);
       densifier.setProjectionOptions(po);
       densifier.setCropToScan(false);
+      densifier.setDisparityRangeMode(DisparityRangeMode::Fixed);  // the paper's 128, as recorded
       densifier.setComputeCloud(false);
       densifier.run(points);
       const auto lidarOnly = eval::evaluateDisparity(densifier.disparity().view(), frame.disparity.view());

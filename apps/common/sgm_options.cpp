@@ -13,7 +13,7 @@ const std::set<std::string>& sgmValueOptions() {
   static const std::set<std::string> options{"alpha", "sigma", "lidar_cost_cap", "num_disparities", "min_disparity",
                                              "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
                                              "backend", "lidar_coverage_rows", "scale", "threads",
-                                             "min_confidence"};
+                                             "min_confidence", "disparity_range"};
   return options;
 }
 
@@ -25,13 +25,18 @@ const std::set<std::string>& sgmFlagOptions() {
 
 std::string sgmOptionsHelp() {
   const Parameters d;
-  char text[4400];
+  char text[5200];
   std::snprintf(text, sizeof(text),
                 "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
                 "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
                 "  -lidar_cost_cap C        upper bound of the LiDAR cost, in [1, 255] (default: %d)\n"
-                "  -num_disparities N       disparity search range, multiple of 16 (default: %d)\n"
-                "  -min_disparity M         smallest disparity (default: %d)\n"
+                "  -disparity_range lidar|fixed  where the search range comes from (default: lidar: from each\n"
+                "                           frame's LiDAR, [0, dmax + max(8 px, 5 %%)) rounded up to 16 (32 at\n"
+                "                           -scale 0.5), at most 256, dmax its largest disparity but 10 strays;\n"
+                "                           a frame without LiDAR gets the fixed one); -num_disparities or\n"
+                "                           -min_disparity alone mean fixed\n"
+                "  -num_disparities N       fixed search range (the paper's), multiple of 16 (default: %d)\n"
+                "  -min_disparity M         fixed smallest disparity (default: %d)\n"
                 "  -paths 4|8               SGM aggregation paths (default: %d)\n"
                 "  -p1 P1                   small-jump penalty (default: %d)\n"
                 "  -p2 P2                   large-jump penalty, > P1 (default: %d)\n"
@@ -89,6 +94,15 @@ Parameters parametersFrom(const Arguments& args) {
   }
   validate(p);
   return p;
+}
+
+bool fixedDisparityRange(const Arguments& args) {
+  const bool explicitRange = args.has("num_disparities") || args.has("min_disparity");
+  const std::string mode = args.text("disparity_range", explicitRange ? "fixed" : "lidar");
+  if (mode != "lidar" && mode != "fixed") {
+    throw std::invalid_argument("option -disparity_range: '" + mode + "' must be lidar or fixed");
+  }
+  return mode == "fixed";
 }
 
 Backend backendFrom(const Arguments& args) {

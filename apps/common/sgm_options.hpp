@@ -18,6 +18,10 @@ const std::set<std::string>& sgmFlagOptions();
 std::string sgmOptionsHelp();
 /// Parameters from the options, validated (std::invalid_argument names the bad one).
 Parameters parametersFrom(const Arguments& args);
+/// Whether the search range is the fixed one of the options (-disparity_range fixed, or
+/// -num_disparities / -min_disparity given without -disparity_range lidar) rather than the
+/// frame's LiDAR's (the default). Throws std::invalid_argument for another -disparity_range.
+bool fixedDisparityRange(const Arguments& args);
 /// The -backend option (default auto), checked against the backends built into this library, so
 /// that a tool refuses it before reading any file.
 Backend backendFrom(const Arguments& args);

@@ -23,11 +23,16 @@ struct FrameRun {
   FrameResult result;
   std::vector<MethodResult> sweep;  ///< the fused method at each alpha of options.alphas
   std::vector<std::pair<Method, Image<std::int16_t>>> disparities;  ///< kept for the pictures
+  std::string fusedRange;  ///< the range the fused method at the paper's alpha matched with, for the log
 };
 
 /// Every metric of one method's output on one frame.
-MethodResult score(const Method& method, const EvalFrame& f, const Image<std::int16_t>& d, double milliseconds) {
-  MethodResult result{method, evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view()), milliseconds};
+MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput& out) {
+  const Image<std::int16_t>& d = out.disparity;
+  MethodResult result{method, evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view()), out.milliseconds};
+  result.minDisparity = out.range.minDisparity;
+  result.numDisparities = out.range.numDisparities;
+  result.rangeFromLidar = out.range.fromLidar;
   CloudScoring scoring;
   scoring.denseGroundTruth = f.denseGroundTruth;  // P3: a point on the sky is wrong
   result.cloud = evaluateCloud(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
@@ -41,15 +46,16 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
   run.result.dataset = frame.dataset;
   run.result.frame = frame.name;
   for (const Method& m : methods) {
-    MethodOutput out = runMethod(m, frame, base, options.backend);
-    run.result.methods.push_back(score(m, frame, out.disparity, out.milliseconds));
+    MethodOutput out = runMethod(m, frame, base, options.backend, options.range);
+    run.result.methods.push_back(score(m, frame, out));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
-    MethodOutput out = runMethod(fused, frame, base, options.backend);
-    run.sweep.push_back(score(fused, frame, out.disparity, out.milliseconds));
+    MethodOutput out = runMethod(fused, frame, base, options.backend, options.range);
+    run.sweep.push_back(score(fused, frame, out));
     if (std::abs(alpha - kPaperAlpha) < 1e-9) {
+      run.fusedRange = out.range.describe();
       run.result.methods.push_back(run.sweep.back());
       run.disparities.emplace_back(fused, std::move(out.disparity));
     }
@@ -93,8 +99,9 @@ ProtocolResult runGroup(const FrameGroup& group, const GroupRunOptions& options)
         if (!options.picturesDir.empty()) writeFramePictures(options.picturesDir, group.frames[i], runs[i].disparities);
         runs[i].disparities.clear();  // the pictures are written; the memory is not needed
         std::lock_guard<std::mutex> lock(printMutex);
-        std::printf("  [%zu/%zu] %s / %s [done, %.0f ms]\n", ++done, group.frames.size(),
-                    group.frames[i].dataset.c_str(), group.frames[i].name.c_str(), millisecondsSince(start));
+        std::printf("  [%zu/%zu] %s / %s [done, %.0f ms; fused range %s]\n", ++done, group.frames.size(),
+                    group.frames[i].dataset.c_str(), group.frames[i].name.c_str(), millisecondsSince(start),
+                    runs[i].fusedRange.c_str());
         std::fflush(stdout);
       } catch (const std::exception& e) {
         errors[i] = group.frames[i].name + ": " + e.what();

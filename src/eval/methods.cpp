@@ -8,7 +8,6 @@
 
 #include "baselines.hpp"
 #include "lidar_sgm/io/image_io.hpp"
-#include "lidar_sgm/pipeline/densifier.hpp"
 
 namespace lidar_sgm {
 namespace eval {
@@ -72,13 +71,14 @@ namespace {
 /// A LiDAR-SGM method as the tools run it: the Densifier on the frame's projected scan, its mode
 /// following the inputs it is given (and the LiDAR-only crop on, its default).
 void runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params, Backend backend,
-                  MethodOutput& out) {
+                  DisparityRangeMode rangeMode, MethodOutput& out) {
   const bool images = method.kind != MethodKind::LidarSgm;
   const bool lidar = method.kind == MethodKind::LidarSgm || method.kind == MethodKind::FusedSgm ||
                      method.kind == MethodKind::ThreeCamerasLidar;
   Densifier densifier;
   densifier.setParameters(params);
   densifier.setBackend(backend);
+  densifier.setDisparityRangeMode(rangeMode);
   densifier.setComputeCloud(false);  // the protocols score the disparity
   if (images) densifier.setStereoPair(io::grayView(frame.left), io::grayView(frame.right));
   if (method.needsThirdCamera()) densifier.setUpCamera(io::grayView(frame.up), frame.upBaselineRatio);
@@ -86,11 +86,13 @@ void runDensifier(const Method& method, const EvalFrame& frame, const Parameters
   out.disparity = densifier.disparity();
   out.confidence = densifier.confidence();
   if (densifier.matcher() != nullptr) out.confidenceInputs = densifier.matcher()->confidenceInputs();
+  out.range = densifier.usedDisparityRange();
 }
 
 }  // namespace
 
-MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend) {
+MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend,
+                       const RangeChoice& range) {
   if (method.needsThirdCamera() && frame.up.empty()) {
     throw std::invalid_argument(displayName(method) + " needs a third camera; frame " + frame.name + " has none");
   }
@@ -99,6 +101,7 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
   switch (method.kind) {
     case MethodKind::OpenCvSgbm:
       out.disparity = opencvSgbm(frame.left, frame.right, frame.numDisparities, 5);
+      out.range.numDisparities = frame.numDisparities;
       break;
     case MethodKind::Morphological:
       out.disparity = morphologicalCompletion(frame.lidarSparse, frame.focalBaseline);
@@ -109,11 +112,12 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
     case MethodKind::ThreeCameras:
     case MethodKind::ThreeCamerasLidar: {
       Parameters params = base;
-      params.numDisparities = numDisparitiesAt(frame.numDisparities, base.scale);
+      params.numDisparities =
+          numDisparitiesAt(range.numDisparities > 0 ? range.numDisparities : frame.numDisparities, base.scale);
       // The kinds without a LiDAR weight of their own have it by definition (MethodKind).
       params.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
                                         : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
-      runDensifier(method, frame, params, backend, out);
+      runDensifier(method, frame, params, backend, range.mode, out);
       break;
     }
   }

@@ -93,6 +93,10 @@ nlohmann::json methodJson(const MethodResult& method) {
   entry["best_alpha"] = method.bestAlpha;
   entry["name"] = label(method);
   entry["ms"] = method.milliseconds;
+  if (method.numDisparities > 0) {
+    entry["disparity_range"] = {
+        {"min", method.minDisparity}, {"num", method.numDisparities}, {"from_lidar", method.rangeFromLidar}};
+  }
   return entry;
 }
 
@@ -211,6 +215,7 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
     entries[i].cloud = medianCloud(clouds[i]);
     entries[i].depth = medianDepth(depths[i]);
     entries[i].milliseconds = medianOf(milliseconds[i]);
+    entries[i].numDisparities = 0;  // a range per frame, not a median
   }
   return entries;
 }

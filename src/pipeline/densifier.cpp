@@ -141,14 +141,20 @@ geometry::StereoCalibration Densifier::resolveCalibration(bool required, int lid
   return c;
 }
 
-void Densifier::prepareMatcher() {
-  validate(params_);
+void Densifier::prepareMatcher(const std::vector<LidarSample>& samples) {
+  // The range depends on the frame: chosen here, after the projection, and validated with the rest.
+  usedRange_ = geometry::disparityRangeFromLidar(
+      rangeMode_ == DisparityRangeMode::FromLidar ? samples : std::vector<LidarSample>{}, params_, rangeRule_);
+  usedParams_ = params_;
+  usedParams_.minDisparity = usedRange_.minDisparity;
+  usedParams_.numDisparities = usedRange_.numDisparities;
+  validate(usedParams_);
   // The matcher keeps its buffers between frames; it is rebuilt only for another backend.
   if (!matcher_ || matcherBackend_ != backend_) {
-    matcher_ = Matcher::create(backend_, params_);
+    matcher_ = Matcher::create(backend_, usedParams_);
     matcherBackend_ = backend_;
   } else {
-    matcher_->setParameters(params_);
+    matcher_->setParameters(usedParams_);
   }
 }
 
@@ -240,7 +246,7 @@ void Densifier::reprojectResult() {
 const geometry::DenseCloud& Densifier::run(const std::vector<Eigen::Vector3f>& pointsLidar) {
   used_ = resolveCalibration(true, 0, 0);
   haveCalibration_ = true;
-  prepareMatcher();
+  validate(params_);
   if (pointsLidar.empty()) throw std::invalid_argument("the input cloud is empty");
 
   const auto start = std::chrono::steady_clock::now();
@@ -250,6 +256,7 @@ const geometry::DenseCloud& Densifier::run(const std::vector<Eigen::Vector3f>& p
     throw std::invalid_argument("no point of the cloud projects into the image (" + projected_.stats.describe() +
                                 "): check the calibration");
   }
+  prepareMatcher(projected_.samples);
   const LidarPoints lidar = projected_.lidarPoints();
   match(&lidar);
   reprojectResult();
@@ -260,7 +267,7 @@ const geometry::DenseCloud& Densifier::runProjected(const LidarPoints* lidar) {
   const bool useLidar = lidar != nullptr && !lidar->empty();
   used_ = resolveCalibration(false, useLidar ? lidar->width() : 0, useLidar ? lidar->height() : 0);
   haveCalibration_ = calibration_.baseline != 0.0;
-  prepareMatcher();
+  validate(params_);
   const auto start = std::chrono::steady_clock::now();
   projected_ = geometry::ProjectedLidar();
   projected_.width = used_.width;
@@ -271,6 +278,7 @@ const geometry::DenseCloud& Densifier::runProjected(const LidarPoints* lidar) {
     projected_.stats.kept = projected_.samples.size();
   }
   timings_.project = millisecondsSince(start);
+  prepareMatcher(projected_.samples);
   match(useLidar ? lidar : nullptr);
   reprojectResult();
   return cloud_;

@@ -143,7 +143,8 @@ TEST_F(DensifyCli, HelpListsTheOptions) {
                              "-format binary|compressed|ascii", "(default: binary)", "-scale 1|0.5", "-threads N",
                              "0 = all hardware threads", "-backend", "cpu_ref, cpu", "-preview OUT.png",
                              "-preview_size WxH", "(default: 960x600)", "-preview_height M", "-preview_behind M",
-                             "-preview_pitch DEG", "-preview_ground M", "-preview_color image|depth"}) {
+                             "-preview_pitch DEG", "-preview_ground M", "-preview_color image|depth",
+                             "-disparity_range lidar|fixed", "-min_confidence", "-confidence OUT.png"}) {
     EXPECT_NE(r.output.find(option), std::string::npos) << option;
   }
 }
@@ -312,6 +313,25 @@ TEST_F(DensifyCli, ConfidenceFieldPngAndMinimum) {
   expectFailure(kScan + " " + p("out.pcd") + options + " -no_confidence -confidence " +
                     p("c.png"),
                 "-no_confidence");
+}
+
+TEST_F(DensifyCli, TheSearchRangeComesFromTheLidarUnlessFixed) {
+  const std::string line = kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft + " -right " + kRight;
+  const RunResult lidar = runTool(line);
+  ASSERT_EQ(lidar.exitCode, 0) << lidar.output;
+  std::smatch match;
+  const std::string output = lidar.output;
+  ASSERT_TRUE(std::regex_search(output, match,
+                                std::regex("disparity range: \\[0, ([0-9]+)\\) px from the LiDAR \\(max ([0-9.]+) px\\)")))
+      << output;
+  const int top = std::stoi(match[1].str());
+  const double lidarMax = std::stod(match[2].str());
+  EXPECT_EQ(top % 16, 0);
+  EXPECT_GE(top, lidarMax + 8.0);  // the rule's least margin
+  EXPECT_LT(top, lidarMax + 8.0 + 0.05 * lidarMax + 16.0);
+  const RunResult fixed = runTool(line + " -num_disparities 128");
+  ASSERT_EQ(fixed.exitCode, 0) << fixed.output;
+  EXPECT_NE(fixed.output.find("disparity range: [0, 128) px (fixed)"), std::string::npos) << fixed.output;
 }
 
 TEST_F(DensifyCli, LidarOnlyWithLeftImageWritesColoredPly) {
@@ -596,6 +616,7 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
                 "invalid parameter numDisparities = 48: must be a multiple of 32 at scale 0.5");
   expectFailure(kScan + out + calib + pair + " -scale 0.5 -min_disparity 3", "invalid parameter minDisparity = 3");
   expectFailure(kScan + out + calib + pair + " -backend gpu", "option -backend: unknown backend 'gpu'");
+  expectFailure(kScan + out + calib + pair + " -disparity_range near", "option -disparity_range: 'near' must be");
   expectFailure(kScan + out + calib + pair + " -format lzf", "option -format: unknown cloud format 'lzf'");
   expectFailure(kScan + " " + p("out.ply") + calib + pair + " -format compressed", "PLY has no compressed form");
   expectFailure(kScan + out + calib + pair + " -paths 3", "paths = 3");

@@ -74,7 +74,8 @@ TEST_F(DisparityCli, HelpListsEveryOptionWithItsDefault) {
   for (const char* option : {"-lidar ", "-lidar_depth", "-fb", "-alpha", "-sigma", "-num_disparities",
                              "-min_disparity", "-paths", "-p1", "-p2", "-uniqueness", "-no_lr_check", "-median",
                              "-backend", "-color", "(default: 0.7)", "(default: 128)", "(default: 100)", "-scale 1|0.5",
-                             "-threads N", "0 = all hardware threads", "cpu_ref, cpu"}) {
+                             "-threads N", "0 = all hardware threads", "cpu_ref, cpu",
+                             "-disparity_range lidar|fixed", "(default: lidar"}) {
     EXPECT_NE(r.output.find(option), std::string::npos) << option;
   }
 }
@@ -117,6 +118,26 @@ TEST_F(DisparityCli, TwoFilesMeanLidarOnly) {
   EXPECT_NE(r.output.find("lidar-only"), std::string::npos) << r.output;
 }
 
+TEST_F(DisparityCli, TheSearchRangeComesFromTheLidarUnlessFixed) {
+  // The LiDAR reaches 6 + 0.05 * 96 = 10.8 px: 10.8 + 8 -> [0, 32). Printed, and the color map spans it.
+  const std::string fused = p("left.png") + " " + p("right.png") + " " + p("out.png") + " -lidar " + p("sparse.png");
+  const RunResult lidar = runTool(fused);
+  ASSERT_EQ(lidar.exitCode, 0) << lidar.output;
+  EXPECT_NE(lidar.output.find("disparity range: [0, 32) px from the LiDAR (max 10.8 px)"), std::string::npos)
+      << lidar.output;
+  const RunResult fixed = runTool(fused + " -num_disparities 64");
+  ASSERT_EQ(fixed.exitCode, 0) << fixed.output;
+  EXPECT_NE(fixed.output.find("disparity range: [0, 64) px (fixed)"), std::string::npos) << fixed.output;
+  const RunResult paper = runTool(fused + " -disparity_range fixed");
+  EXPECT_NE(paper.output.find("disparity range: [0, 128) px (fixed)"), std::string::npos) << paper.output;
+  // -disparity_range lidar wins over -num_disparities, which is then the range without LiDAR.
+  const RunResult both = runTool(fused + " -num_disparities 64 -disparity_range lidar");
+  EXPECT_NE(both.output.find("disparity range: [0, 32) px from the LiDAR"), std::string::npos) << both.output;
+  // Stereo only: nothing to take it from.
+  const RunResult stereo = runTool(p("left.png") + " " + p("right.png") + " " + p("out.png"));
+  EXPECT_NE(stereo.output.find("disparity range: [0, 128) px (fixed)"), std::string::npos) << stereo.output;
+}
+
 TEST_F(DisparityCli, FailsLoudlyAndLeavesNoOutput) {
   const std::string lr = p("left.png") + " " + p("right.png") + " ";
   expectFailure(lr + p("out.png") + " -p1 100 -p2 50", "P2 = 50");
@@ -134,6 +155,7 @@ TEST_F(DisparityCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(lr + p("out.png") + " -scale 0.7", "scale = 0.7");
   expectFailure(lr + p("out.png") + " -threads -1", "threads = -1");
   expectFailure(lr + p("out.png") + " -scale 0.5 -num_disparities 48", "numDisparities = 48");
+  expectFailure(lr + p("out.png") + " -disparity_range auto", "option -disparity_range: 'auto' must be lidar or fixed");
   expectFailure(lr + p("out.jpg"), "must be a .png file");
   expectFailure(p("left.png") + " " + p("right.png") + " " + p("no_dir/out.png"), "cannot write");
 }

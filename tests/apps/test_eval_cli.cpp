@@ -93,8 +93,12 @@ TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheDensifiers) 
     EXPECT_DOUBLE_EQ(m.at("correct").get<double>(), fused.correct);
     EXPECT_DOUBLE_EQ(m.at("rmse").get<double>(), fused.rmse);
     EXPECT_DOUBLE_EQ(m.at("density").get<double>(), fused.density);
+    // The range the Densifier took from the frame's LiDAR, recorded per frame.
+    EXPECT_EQ(m.at("disparity_range").at("num").get<int>(), densifier.usedDisparityRange().numDisparities);
+    EXPECT_TRUE(m.at("disparity_range").at("from_lidar").get<bool>());
   }
   EXPECT_TRUE(found) << frame.dump(2);
+  EXPECT_EQ(json.at("settings").at("disparity_range"), "lidar");
 
   std::ifstream md(dir_ / "results.md");
   std::stringstream text;
@@ -164,13 +168,34 @@ TEST_F(EvalCli, TheDataRootIsTheOptionElseTheEnvironmentElseBesideTheWorkingDire
   EXPECT_NE(byDefault.output.find("under '../shared/data'"), std::string::npos) << byDefault.output;
 }
 
+TEST_F(EvalCli, NumDisparitiesFixesTheRangeOfEveryLidarSgmMethod) {
+  const RunResult r = runTool("-protocols P3 -p3_sets rain64 -synth_frames 1 -synth_size 310x94 -alpha_step 1 "
+                              "-num_disparities 64 -threads 2 -no_pictures -out " + dir_.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("disparity range [0, 64) (fixed)"), std::string::npos) << r.output;
+  std::ifstream jsonFile(dir_ / "results.json");
+  const nlohmann::json json = nlohmann::json::parse(jsonFile);
+  EXPECT_EQ(json.at("settings").at("disparity_range"), "fixed");
+  int matchers = 0;
+  for (const auto& m : json.at("protocols").at(0).at("frames").at(0).at("methods")) {
+    const std::string id = m.at("method");
+    if (id == "ip_basic" || id == "opencv_sgbm") continue;  // IP-Basic searches nothing; SGBM the frame's range
+    ++matchers;
+    EXPECT_EQ(m.at("disparity_range").at("num").get<int>(), 64) << id;
+    EXPECT_FALSE(m.at("disparity_range").at("from_lidar").get<bool>()) << id;
+  }
+  EXPECT_GE(matchers, 3);  // stereo-only, LiDAR-only, fused
+}
+
 TEST_F(EvalCli, BadOptionsFailWithAMessage) {
   for (const auto& [args, message] : {std::pair<std::string, std::string>{"-alpha_step 0", "-alpha_step"},
                                       {"-threads -1", "threads = -1"},
                                       {"-scale 0.7", "scale = 0.7"},
                                       {"-backend gpu", "option -backend"},
                                       {"-synth_size 12", "-synth_size"},
-                                      {"-bogus", "unknown option"}}) {
+                                      {"-bogus", "unknown option"},
+                                      {"-disparity_range gt", "option -disparity_range: 'gt'"},
+                                      {"-min_disparity 4", "option -min_disparity"}}) {
     const RunResult r = runTool(args + " -protocols P3 -out " + dir_.string());
     EXPECT_NE(r.exitCode, 0) << args;
     EXPECT_NE(r.output.find(message), std::string::npos) << r.output;

@@ -136,7 +136,8 @@ INSTANTIATE_TEST_SUITE_P(EveryTool, ToolOptions, ::testing::ValuesIn(builtTools(
 TEST(EvalToolOptions, WithoutArgumentsPrintsThePlanAndRunsNothing) {
   const RunResult r = run(LIDAR_SGM_TOOL_EVAL, "");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  for (const char* part : {"protocols: P1, P2, P3", "methods:", "outputs:", "-out DIR is required"}) {
+  for (const char* part : {"protocols: P1, P2, P3", "methods:", "outputs:", "-out DIR is required",
+                           "disparity range from each frame's LiDAR (without LiDAR: the frame's)"}) {
     EXPECT_NE(r.output.find(part), std::string::npos) << part << " in:\n" << r.output;
   }
   EXPECT_EQ(r.output.find("Loading"), std::string::npos) << r.output;

@@ -182,6 +182,14 @@ TEST(SGMDensificationParameters, EverySetterReachesTheDensifiersOwnField) {
   EXPECT_TRUE(sgm.getCropToScan());
   sgm.setCropToScan(false);
   EXPECT_FALSE(sgm.getCropToScan());
+  EXPECT_EQ(sgm.getDisparityRangeMode(), DisparityRangeMode::FromLidar);
+  sgm.setDisparityRangeMode(DisparityRangeMode::Fixed);
+  EXPECT_EQ(sgm.getDisparityRangeMode(), DisparityRangeMode::Fixed);
+  geometry::DisparityRangeRule rule;
+  rule.maxNumDisparities = 192;
+  sgm.setDisparityRangeRule(rule);
+  EXPECT_EQ(sgm.getDisparityRangeRule().maxNumDisparities, 192);
+  expectEqual(sgm.getParameters(), p);
 }
 
 TEST(SGMDensificationParameters, TheFrameRunsWithWhatTheSettersSaid) {
@@ -199,17 +207,28 @@ TEST(SGMDensificationParameters, TheFrameRunsWithWhatTheSettersSaid) {
   EXPECT_NE(sgm.getLastError().find("out of range"), std::string::npos) << sgm.getLastError();
   EXPECT_TRUE(sgm.getProjectedLidar().samples.empty());
   sgm.setMaxPointDepth(10.0);
-  sgm.setMinDisparity(32);  // the wall's 25 px are below the range searched
+  sgm.setMinDisparity(32);  // the wall's 25 px are below this range...
+  const auto wallPixels = [&sgm] {
+    std::size_t valid = 0;
+    const Image<std::int16_t>& d = sgm.getDisparityImage();
+    for (int y = 0; y < d.height(); ++y) {
+      for (int x = 0; x < d.width(); ++x) valid += d(x, y) != kInvalidDisparity && d(x, y) < 30 * 16 ? 1 : 0;
+    }
+    return valid;
+  };
+  sgm.filter(dense);  // ... but by default the range is the LiDAR's: [0, 25 + 8) -> [0, 48)
+  ASSERT_TRUE(sgm.getLastError().empty()) << sgm.getLastError();
+  EXPECT_TRUE(sgm.getUsedDisparityRange().fromLidar);
+  EXPECT_EQ(sgm.getUsedDisparityRange().minDisparity, 0);
+  EXPECT_EQ(sgm.getUsedDisparityRange().numDisparities, 48);
+  EXPECT_GT(wallPixels(), 0u);
+  sgm.setDisparityRangeMode(DisparityRangeMode::Fixed);  // the setters' range
   sgm.filter(dense);
   ASSERT_TRUE(sgm.getLastError().empty()) << sgm.getLastError();
   ASSERT_FALSE(sgm.getDisparityImage().empty());
   EXPECT_EQ(sgm.getUsedBackend(), Backend::CpuRef);
-  std::size_t valid = 0;
-  const Image<std::int16_t>& d = sgm.getDisparityImage();
-  for (int y = 0; y < d.height(); ++y) {
-    for (int x = 0; x < d.width(); ++x) valid += d(x, y) != kInvalidDisparity && d(x, y) < 30 * 16 ? 1 : 0;
-  }
-  EXPECT_EQ(valid, 0u);
+  EXPECT_EQ(sgm.getUsedDisparityRange().describe(), "[32, 96) px (fixed)");
+  EXPECT_EQ(wallPixels(), 0u);
   // Depth image: f*b / d on the wall, 0 = none.
   sgm.setMinDisparity(0);
   sgm.filter(dense);

@@ -90,7 +90,10 @@ TEST(Densifier, FusedDisparityIsTheMatchersOnTheProjectedScan) {
   EXPECT_EQ(densifier.projected().samples.size(), s.scan.size() - densifier.projected().stats.outsideImage -
                                                       densifier.projected().stats.occluded);
 
-  auto matcher = Matcher::create(Backend::CpuRef, smallParameters());
+  // The plane's LiDAR reaches 14.7 px: the range from the LiDAR is [0, 32), what the matcher got.
+  EXPECT_TRUE(densifier.usedDisparityRange().fromLidar);
+  EXPECT_EQ(densifier.usedParameters().numDisparities, 32);
+  auto matcher = Matcher::create(Backend::CpuRef, densifier.usedParameters());
   const LidarPoints lidar = densifier.projected().lidarPoints();
   Image<std::int16_t> expected(kWidth, kHeight);
   matcher->compute(s.stereo.left.view(), s.stereo.right.view(), &lidar, expected.view());
@@ -189,6 +192,9 @@ TEST(Densifier, StereoOnlyWithoutLidarIsTheMatchersStereoResult) {
   densifier.setStereoPair(s.stereo.left.view(), s.stereo.right.view());
   densifier.runProjected(nullptr);
   EXPECT_EQ(densifier.lastMode(), MatchMode::StereoOnly);
+  // Nothing to take a range from: the fixed one.
+  EXPECT_FALSE(densifier.usedDisparityRange().fromLidar);
+  EXPECT_EQ(densifier.usedParameters().numDisparities, smallParameters().numDisparities);
   // No calibration: the disparity only.
   EXPECT_TRUE(densifier.depth().empty());
   EXPECT_EQ(densifier.cloud().size(), 0u);
@@ -341,6 +347,118 @@ TEST(Densifier, KeepsWorkingAcrossFramesAndBackends) {
   expectSameImage(densifier.disparity(), reference);
   densifier.run(s.scan);
   expectSameImage(densifier.disparity(), reference);
+}
+
+// ---- the disparity range from the LiDAR (issue 11) ------------------------------------------
+
+constexpr int kNearWidth = 161;  // odd sizes on purpose
+constexpr int kNearHeight = 45;
+
+/// A street receding on the left (10 px) that comes near on the right: from x = 60 on the
+/// disparity grows 0.6 px per column, to 70 px at the right border (far beyond a fixed 32).
+double nearRightDisparity(double x, double /*y*/) { return 10.0 + 0.6 * std::max(0.0, x - 60.0); }
+
+geometry::StereoCalibration nearRig() {
+  geometry::StereoCalibration c = test::smallRig();
+  c.width = kNearWidth;
+  c.height = kNearHeight;
+  c.K << 100, 0, 80, 0, 100, 22, 0, 0, 1;
+  return c;
+}
+
+struct NearScene {
+  geometry::StereoCalibration calibration = nearRig();
+  test::SyntheticStereo stereo = test::makeStereo(kNearWidth, kNearHeight, nearRightDisparity);
+  std::vector<Eigen::Vector3f> scan;
+  NearScene() {
+    for (int v = 4; v <= 40; v += 6) {
+      for (int u = 1; u < kNearWidth; u += 3) {
+        scan.push_back(test::lidarPointAt(calibration, u, v, calibration.focalBaseline() / nearRightDisparity(u, v)));
+      }
+    }
+  }
+};
+
+Densifier nearDensifier(const NearScene& s, Backend backend) {
+  Densifier densifier;
+  densifier.setCalibration(s.calibration);
+  densifier.setParameters(smallParameters());  // the fixed range: [0, 32)
+  densifier.setBackend(backend);
+  densifier.setStereoPair(s.stereo.left.view(), s.stereo.right.view());
+  return densifier;
+}
+
+/// Pixels of column x (rows 2..kNearHeight-3) within 1 px of the GT.
+int rightWithinOnePx(const Densifier& d, const NearScene& s, int x) {
+  int n = 0;
+  for (int y = 2; y < kNearHeight - 2; ++y) {
+    const std::int16_t v = d.disparity()(x, y);
+    n += v != kInvalidDisparity && std::abs(v / 16.0 - s.stereo.disparity(x, y)) < 1.0 ? 1 : 0;
+  }
+  return n;
+}
+
+TEST(Densifier, ANearObjectGetsARangeCoveringIt) {
+  const NearScene s;
+  Densifier densifier = nearDensifier(s, Backend::CpuRef);
+  EXPECT_EQ(densifier.disparityRangeMode(), DisparityRangeMode::FromLidar);  // the default
+  densifier.run(s.scan);
+  const geometry::DisparityRange& range = densifier.usedDisparityRange();
+  ASSERT_TRUE(range.fromLidar);
+  EXPECT_GT(range.lidarMax, 65.0);  // the nearest points (up to 69.4 px) are no strays
+  EXPECT_EQ(range.minDisparity, 0);
+  EXPECT_EQ(range.numDisparities, 80);  // dMax + 8 px, rounded up to 16
+  EXPECT_EQ(densifier.usedParameters().numDisparities, 80);
+  EXPECT_EQ(densifier.parameters().numDisparities, 32);  // the fixed range is kept for later frames
+  // The near columns (GT 61 and 64 px) are matched.
+  EXPECT_GE(rightWithinOnePx(densifier, s, 145), kNearHeight - 8);
+  EXPECT_GE(rightWithinOnePx(densifier, s, 150), kNearHeight - 8);
+
+  Densifier fixed = nearDensifier(s, Backend::CpuRef);
+  fixed.setDisparityRangeMode(DisparityRangeMode::Fixed);
+  fixed.run(s.scan);
+  EXPECT_FALSE(fixed.usedDisparityRange().fromLidar);
+  EXPECT_EQ(fixed.usedParameters().numDisparities, 32);
+  EXPECT_EQ(fixed.usedDisparityRange().describe(), "[0, 32) px (fixed)");
+  EXPECT_EQ(rightWithinOnePx(fixed, s, 150), 0);  // beyond the fixed range
+}
+
+TEST(Densifier, TheRangeRuleIsTheDensifiers) {
+  const NearScene s;
+  Densifier densifier = nearDensifier(s, Backend::CpuRef);
+  geometry::DisparityRangeRule rule;
+  rule.maxNumDisparities = 48;
+  densifier.setDisparityRangeRule(rule);
+  densifier.run(s.scan);
+  EXPECT_EQ(densifier.usedParameters().numDisparities, 48);
+  EXPECT_TRUE(densifier.usedDisparityRange().capped);
+  rule.maxNumDisparities = 40;  // not a multiple of 16: named
+  densifier.setDisparityRangeRule(rule);
+  expectError([&] { densifier.run(s.scan); }, "maxNumDisparities");
+}
+
+TEST(Densifier, TheRangeFromTheLidarIsTheSameOnEveryBackend) {
+  const NearScene s;
+  Densifier reference = nearDensifier(s, Backend::CpuRef);
+  reference.run(s.scan);
+  for (Backend backend : {Backend::Cpu, Backend::Auto}) {
+    if (!isAvailable(backend)) continue;
+    Densifier fast = nearDensifier(s, backend);
+    fast.run(s.scan);
+    EXPECT_EQ(fast.usedParameters().numDisparities, reference.usedParameters().numDisparities);
+    expectSameImage(fast.disparity(), reference.disparity());
+  }
+  // At half scale the range is a multiple of 32 (96 here), and again the same everywhere.
+  Parameters half = smallParameters();
+  half.scale = 0.5f;
+  Densifier halfReference = nearDensifier(s, Backend::CpuRef);
+  halfReference.setParameters(half);
+  halfReference.run(s.scan);
+  EXPECT_EQ(halfReference.usedParameters().numDisparities, 96);
+  Densifier halfFast = nearDensifier(s, Backend::Auto);
+  halfFast.setParameters(half);
+  halfFast.run(s.scan);
+  expectSameImage(halfFast.disparity(), halfReference.disparity());
 }
 
 }  // namespace

@@ -31,6 +31,9 @@ struct GroupRunOptions {
   std::string picturesDir;     ///< per-frame pictures go here; empty: none
   Parameters base;             ///< the LiDAR-SGM methods' parameters (alpha and numDisparities are set per run)
   Backend backend = Backend::Auto;
+  /// The LiDAR-SGM methods' search range: from each frame's LiDAR (the tools' default) or fixed:
+  /// the frame's numDisparities (the protocol's, from its GT: EVALUATION.md) or a given one.
+  RangeChoice range;
 };
 
 /// Runs every method of `group` and the fused method at every alpha on each frame, in parallel

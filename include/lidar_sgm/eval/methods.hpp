@@ -12,6 +12,8 @@
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/core/parameters.hpp"
 #include "lidar_sgm/eval/eval_frame.hpp"
+#include "lidar_sgm/geometry/disparity_range.hpp"
+#include "lidar_sgm/pipeline/densifier.hpp"
 
 namespace lidar_sgm {
 namespace eval {
@@ -57,15 +59,28 @@ struct MethodOutput {
   /// LiDAR-SGM methods: the inputs of the confidence, at the matched size.
   ConfidenceInputs confidenceInputs;
   double milliseconds = 0;
+  /// The search range the method matched with (the Densifier's usedDisparityRange for the
+  /// LiDAR-SGM methods, the frame's for OpenCV SGBM); numDisparities 0 for IP-Basic.
+  geometry::DisparityRange range{0, 0};
+};
+
+/// Where the LiDAR-SGM methods' search range comes from.
+struct RangeChoice {
+  /// FromLidar (the tools' default): from the frame's LiDAR for the methods that have one;
+  /// Fixed, and the methods without LiDAR: the fixed range below.
+  DisparityRangeMode mode = DisparityRangeMode::FromLidar;
+  /// The fixed numDisparities; 0 = the frame's (EvalFrame::numDisparities).
+  int numDisparities = 0;
 };
 
 /// Runs `method` on `frame`: the LiDAR-SGM methods through a Densifier (runProjected on the
 /// frame's LiDAR, no cloud) with `base` (the tools' SGM options, scale and threads included) on
-/// `backend`, alpha the method's and numDisparities the frame's (rounded up to a multiple of 32
-/// at scale 0.5, which needs one). The baselines ignore `base`. Throws std::invalid_argument
-/// when the frame lacks what the method needs.
+/// `backend`, alpha the method's and the search range by `range` (the fixed one rounded up to a
+/// multiple of 32 at scale 0.5, which needs one). The baselines ignore `base` and `range` (OpenCV
+/// SGBM searches the frame's numDisparities). Throws std::invalid_argument when the frame lacks
+/// what the method needs.
 MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base = {},
-                       Backend backend = Backend::Auto);
+                       Backend backend = Backend::Auto, const RangeChoice& range = {});
 
 /// The search range of a frame whose protocol chose `frameNumDisparities`, at `scale`: the
 /// same at scale 1; at 0.5 rounded up to a multiple of 32 (the half-scale search range must be

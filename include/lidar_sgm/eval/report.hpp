@@ -23,6 +23,11 @@ struct MethodResult {
   /// The group's best alpha of the sweep (chosen on the same frames: an upper bound), reported
   /// beside the same method at the paper's alpha.
   bool bestAlpha = false;
+  /// The search range [minDisparity, minDisparity + numDisparities) the method matched with, and
+  /// whether it came from the LiDAR; numDisparities 0 where none (IP-Basic, the medians).
+  int minDisparity = 0;
+  int numDisparities = 0;
+  bool rangeFromLidar = false;
   CloudMetrics cloud{};  ///< the same output scored as a cloud
   DepthMetrics depth{};  ///< and as a depth map (KITTI depth completion)
 };
@@ -85,7 +90,7 @@ std::string markdownTable(const ProtocolResult& result);
 /// DisparityMetrics, rmse in px, ms in milliseconds:
 /// {"protocols":[{"protocol","description","frames":[{"dataset","frame","methods":[{"method",
 /// ["alpha",] "best_alpha","name","correct","rmse","d1","d1_est","density","gt_pixels",
-/// "estimated_pixels","ms","cloud":{"points","gt_pixels","tau_3":{"precision","completeness",
+/// "estimated_pixels","ms",["disparity_range":{"min","num","from_lidar"},]"cloud":{"points","gt_pixels","tau_3":{"precision","completeness",
 /// "f_score"},"tau_5":{...}},"depth":{"rmse_mm","mae_mm","irmse_per_km","imae_per_km","density",
 /// "gt_pixels","estimated_pixels"}}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
 /// "correct","rmse",...}]}}]} (the sweeps hold the disparity metrics only).

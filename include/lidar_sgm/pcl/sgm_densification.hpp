@@ -111,6 +111,16 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
 
   // ---- matcher parameters: lidar_sgm::Parameters (meaning and ranges there); checked in filter()
 
+  /// The search range: from each frame's LiDAR (DisparityRangeMode::FromLidar, the default:
+  /// geometry::disparityRangeFromLidar) or the fixed [minDisparity, minDisparity +
+  /// numDisparities) below (Fixed; the paper's [0, 128)). In FromLidar mode the fixed range is
+  /// used only for a frame with no point in the image. getUsedDisparityRange() tells which.
+  void setDisparityRangeMode(DisparityRangeMode mode) { densifier_.setDisparityRangeMode(mode); }
+  DisparityRangeMode getDisparityRangeMode() const { return densifier_.disparityRangeMode(); }
+  /// The numbers of the FromLidar rule (margin, strays ignored, floor and cap).
+  void setDisparityRangeRule(const geometry::DisparityRangeRule& rule) { densifier_.setDisparityRangeRule(rule); }
+  const geometry::DisparityRangeRule& getDisparityRangeRule() const { return densifier_.disparityRangeRule(); }
+  /// The fixed range (see setDisparityRangeMode).
   void setMinDisparity(int d) { densifier_.parameters().minDisparity = d; }
   int getMinDisparity() const { return densifier_.parameters().minDisparity; }
   void setNumDisparities(int n) { densifier_.parameters().numDisparities = n; }
@@ -234,6 +244,8 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   const geometry::ProjectedLidar& getProjectedLidar() const { return projected_; }
   const DensificationTimings& getTimings() const { return densifier_.timings(); }
   MatchMode getLastMode() const { return densifier_.lastMode(); }
+  /// The search range the last frame was matched with ("[0, 176) px from the LiDAR ...").
+  const geometry::DisparityRange& getUsedDisparityRange() const { return densifier_.usedDisparityRange(); }
   /// The backend that matched the last frame (Auto resolved); Auto before the first.
   Backend getUsedBackend() const { return densifier_.usedBackend(); }
   const std::string& getLastError() const { return lastError_; }

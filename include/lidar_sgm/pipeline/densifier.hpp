@@ -14,6 +14,7 @@
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/core/parameters.hpp"
 #include "lidar_sgm/geometry/calibration.hpp"
+#include "lidar_sgm/geometry/disparity_range.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
 
@@ -25,6 +26,16 @@ struct DensificationTimings {
   double match = 0;      ///< LiDAR-SGM (all stages of the core) and the LiDAR-only crop
   double reproject = 0;  ///< dense disparity -> depth image and 3D points
   double total() const { return project + match + reproject; }
+};
+
+/// Where a run's disparity search range comes from.
+enum class DisparityRangeMode {
+  /// From the frame's projected LiDAR (geometry::disparityRangeFromLidar): minDisparity 0,
+  /// numDisparities covering the nearest surface the scan saw. A frame without LiDAR points
+  /// (stereo-only) keeps the fixed range of parameters().
+  FromLidar,
+  /// parameters().minDisparity / numDisparities as given (the paper: [0, 128)).
+  Fixed,
 };
 
 /// Holds the calibration, images, parameters and buffers between frames; run() does one frame.
@@ -77,6 +88,8 @@ class Densifier {
 
   // ---- options --------------------------------------------------------------------------
 
+  /// The matcher's parameters. Their minDisparity / numDisparities are the fixed range: used
+  /// as given in DisparityRangeMode::Fixed, and in FromLidar only for frames without LiDAR.
   void setParameters(const Parameters& params) { params_ = params; }
   const Parameters& parameters() const { return params_; }
   Parameters& parameters() { return params_; }
@@ -88,6 +101,12 @@ class Densifier {
   void setReprojectionOptions(const geometry::ReprojectionOptions& o) { reprojectionOptions_ = o; }
   const geometry::ReprojectionOptions& reprojectionOptions() const { return reprojectionOptions_; }
   geometry::ReprojectionOptions& reprojectionOptions() { return reprojectionOptions_; }
+
+  /// Where the search range comes from (default FromLidar) and, for FromLidar, the rule's numbers.
+  void setDisparityRangeMode(DisparityRangeMode mode) { rangeMode_ = mode; }
+  DisparityRangeMode disparityRangeMode() const { return rangeMode_; }
+  void setDisparityRangeRule(const geometry::DisparityRangeRule& rule) { rangeRule_ = rule; }
+  const geometry::DisparityRangeRule& disparityRangeRule() const { return rangeRule_; }
 
   /// LiDAR-only mode: clear the pixels above the scan's top and below its bottom point per
   /// column (+- lidarCoverageRows rows, +-2 columns), where nothing was measured (default on).
@@ -140,6 +159,11 @@ class Densifier {
   const geometry::ProjectedLidar& projected() const { return projected_; }
   /// The calibration the last run used (its size completed from the images).
   const geometry::StereoCalibration& usedCalibration() const { return used_; }
+  /// The search range the last run matched with, and where it came from.
+  const geometry::DisparityRange& usedDisparityRange() const { return usedRange_; }
+  /// parameters() with the last run's range: what the matcher got (e.g. to color-map the
+  /// disparity over [minDisparity, minDisparity + numDisparities)).
+  const Parameters& usedParameters() const { return usedParams_; }
   const DensificationTimings& timings() const { return timings_; }
   MatchMode lastMode() const { return lastMode_; }
   /// The backend that matched (Auto resolved); Auto before the first run.
@@ -155,7 +179,7 @@ class Densifier {
 
  private:
   geometry::StereoCalibration resolveCalibration(bool required, int lidarWidth, int lidarHeight) const;
-  void prepareMatcher();
+  void prepareMatcher(const std::vector<LidarSample>& samples);
   void match(const LidarPoints* lidar);
   void reprojectResult();
   void keepConfidenceOfValidPixels();
@@ -166,6 +190,10 @@ class Densifier {
   geometry::StereoCalibration calibration_;
   geometry::StereoCalibration used_;
   Parameters params_;
+  Parameters usedParams_;
+  DisparityRangeMode rangeMode_ = DisparityRangeMode::FromLidar;
+  geometry::DisparityRangeRule rangeRule_;
+  geometry::DisparityRange usedRange_;
   Backend backend_ = Backend::Auto;
   geometry::ProjectionOptions projectionOptions_;
   geometry::ReprojectionOptions reprojectionOptions_;
