@@ -37,7 +37,7 @@ constexpr std::size_t fieldCount() {
 }
 
 // A new field needs a setter/getter pair in SGMDensification and a line in the test below.
-static_assert(fieldCount<Parameters>() == 19, "Parameters changed: add the setter and test it here");
+static_assert(fieldCount<Parameters>() == 20, "Parameters changed: add the setter and test it here");
 static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: add the setter");
 static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: add the setter");
 static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: add the setter");
@@ -62,6 +62,7 @@ void expectEqual(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.censusType, b.censusType);
   EXPECT_EQ(a.scale, b.scale);
   EXPECT_EQ(a.threads, b.threads);
+  EXPECT_EQ(a.confidence, b.confidence);
 }
 
 void expectEqual(const geometry::ProjectionOptions& a, const geometry::ProjectionOptions& b) {
@@ -137,6 +138,8 @@ TEST(SGMDensificationParameters, EverySetterReachesTheDensifiersOwnField) {
   check("scale", sgm, &Sgm::setScale, &Sgm::getScale, p.scale);
   p.threads = 3;
   check("threads", sgm, &Sgm::setNumberOfThreads, &Sgm::getNumberOfThreads, p.threads);
+  p.confidence = !p.confidence;
+  check("confidence", sgm, &Sgm::setComputeConfidence, &Sgm::getComputeConfidence, p.confidence);
   expectEqual(sgm.getParameters(), p);
 
   geometry::ProjectionOptions o;

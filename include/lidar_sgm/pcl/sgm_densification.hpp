@@ -164,6 +164,10 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// PCL's name, as pcl::NormalEstimationOMP::setNumberOfThreads.
   void setNumberOfThreads(int threads) { densifier_.parameters().threads = threads; }
   int getNumberOfThreads() const { return densifier_.parameters().threads; }
+  /// Whether the per-point confidence is computed (default true; Parameters::confidence). Off,
+  /// a minimum confidence above 0 is an error and the confidence field is NaN.
+  void setComputeConfidence(bool compute) { densifier_.parameters().confidence = compute; }
+  bool getComputeConfidence() const { return densifier_.parameters().confidence; }
   /// Every matcher parameter at once.
   void setParameters(const Parameters& params) { densifier_.setParameters(params); }
   const Parameters& getParameters() const { return densifier_.parameters(); }
