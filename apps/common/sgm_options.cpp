@@ -7,7 +7,7 @@ namespace lidar_sgm {
 namespace apps {
 
 const std::set<std::string>& sgmValueOptions() {
-  static const std::set<std::string> options{"alpha", "sigma", "lidar_cost_cap", "num_disparities", "min_disparity",
+  static const std::set<std::string> options{"alpha", "alpha_mode", "sigma", "lidar_cost_cap", "num_disparities", "min_disparity",
                                              "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
                                              "backend", "lidar_coverage_rows", "scale", "threads"};
   return options;
@@ -20,9 +20,11 @@ const std::set<std::string>& sgmFlagOptions() {
 
 std::string sgmOptionsHelp() {
   const Parameters d;
-  char text[3600];
+  char text[4000];
   std::snprintf(text, sizeof(text),
                 "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
+                "  -alpha_mode fixed|adaptive  fixed: alpha at every pixel; adaptive: more LiDAR weight within 4 px of\n"
+                "                           a LiDAR point, alpha farther away (default: %s)\n"
                 "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
                 "  -lidar_cost_cap C        upper bound of the LiDAR cost, in [1, 255] (default: %d)\n"
                 "  -num_disparities N       disparity search range, multiple of 16 (default: %d)\n"
@@ -44,7 +46,7 @@ std::string sgmOptionsHelp() {
                 "  -threads N               matcher threads, 0 = all hardware threads; never changes the result\n"
                 "                           (default: %d)\n"
                 "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto, the fastest built)\n",
-                d.alpha, d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
+                d.alpha, toString(d.alphaMode).c_str(), d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
                 d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows, d.scale, d.threads);
   return text;
 }
@@ -52,6 +54,12 @@ std::string sgmOptionsHelp() {
 Parameters parametersFrom(const Arguments& args) {
   Parameters p;
   p.alpha = static_cast<float>(args.number("alpha", p.alpha));
+  const std::string alphaMode = args.text("alpha_mode", toString(p.alphaMode));
+  try {
+    p.alphaMode = alphaModeFromString(alphaMode);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("option -alpha_mode: '" + alphaMode + "' must be fixed or adaptive");
+  }
   p.sigma = static_cast<float>(args.number("sigma", p.sigma));
   p.lidarCostCap = args.integer("lidar_cost_cap", p.lidarCostCap);
   p.numDisparities = args.integer("num_disparities", p.numDisparities);
