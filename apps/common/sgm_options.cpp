@@ -23,8 +23,8 @@ std::string sgmOptionsHelp() {
   char text[4000];
   std::snprintf(text, sizeof(text),
                 "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
-                "  -alpha_mode fixed|adaptive  fixed: alpha at every pixel; adaptive: more LiDAR weight within 4 px of\n"
-                "                           a LiDAR point, alpha farther away (default: %s)\n"
+                "  -alpha_mode fixed|adaptive  fixed: alpha at every pixel; adaptive: more LiDAR weight within 8 px of\n"
+                "                           a LiDAR point and in a dense scan, alpha far from a sparse one (default: %s)\n"
                 "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
                 "  -lidar_cost_cap C        upper bound of the LiDAR cost, in [1, 255] (default: %d)\n"
                 "  -num_disparities N       disparity search range, multiple of 16 (default: %d)\n"

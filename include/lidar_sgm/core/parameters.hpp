@@ -14,7 +14,7 @@ enum class CensusType {
 /// How the LiDAR weight of Eq. 5 is chosen for each pixel.
 enum class AlphaMode {
   Fixed,     ///< alpha everywhere (the paper)
-  Adaptive,  ///< more LiDAR weight near the scan's points, alpha from kAdaptiveReach px away
+  Adaptive,  ///< more LiDAR weight near the scan's points and in a dense scan
 };
 
 /// Parameter names follow OpenCV's StereoSGBM where they mean the same thing.
@@ -26,11 +26,11 @@ struct Parameters {
   int P2 = 100;               ///< penalty for larger jumps (Eq. 1), P1 < P2 <= 4000
   int paths = 4;              ///< SGM paths: 4 (horizontal + vertical, as the paper) or 8 (+ diagonals)
   float alpha = 0.7f;         ///< LiDAR weight in C = alpha*C_L + (1-alpha)*C_S (Eq. 5), in [0, 1]
-  /// Fixed: alpha at every pixel. Adaptive (the paper's future work, range-adaptive fusion): the
-  /// stereo share 1 - alpha shrinks linearly towards the nearest LiDAR point, from 1 - alpha at
-  /// 4 px (and farther) to a quarter of it at 0-1 px, so that a dense scan (128 beams, short gaps
-  /// between beams) weighs more than a sparse one and stereo keeps its share where the scan is
-  /// far (src/backends/common/lidar_weights.hpp).
+  /// Fixed: alpha at every pixel (the paper). Adaptive (range-adaptive fusion, the paper's future
+  /// work): the stereo share 1 - alpha is scaled per pixel by the distance to the nearest LiDAR
+  /// point (1/8 at 0-1 px, rising linearly to 1 at 8 px and beyond) and by the frame's scan density
+  /// (1 for a 64-beam-like scan, down to 1/4 for a dense one), so alpha is the weight far from a
+  /// sparse scan (src/backends/common/lidar_weights.hpp; measured in docs/RESULTS.md).
   AlphaMode alphaMode = AlphaMode::Fixed;
   float sigma = 2.0f;         ///< std-dev of a LiDAR disparity [px] (Eq. 4), in [0.1, 100]
   /// Upper bound of C_L (Eq. 4). Default 62 = the largest census cost, so that alpha weighs two

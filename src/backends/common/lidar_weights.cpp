@@ -38,21 +38,38 @@ void lidarDistance(const LidarPoints& points, ImageView<std::uint16_t> distance)
   }
 }
 
-int lidarWeight(const Parameters& params, int distance) {
+int lidarDensity256(ImageView<const std::uint16_t> distance) {
+  long long touched = 0;
+  long long scan = 0;
+  for (int y = 0; y < distance.height; ++y) {
+    for (int x = 0; x < distance.width; ++x) {
+      touched += distance(x, y) <= 1 ? 1 : 0;
+      scan += distance(x, y) <= kAdaptiveReach ? 1 : 0;
+    }
+  }
+  return scan == 0 ? 0 : static_cast<int>(touched * 256 / scan);
+}
+
+int densityFactor256(int density256) {
+  const int range = kDenseDensity256 - kSparseDensity256;
+  return std::clamp((kDenseDensity256 - density256) * 256 / range, 64, 256);
+}
+
+int lidarWeight(const Parameters& params, int distance, int densityFactor256) {
   const int fixed = alphaWeight(params.alpha);
   if (params.alphaMode == AlphaMode::Fixed) return fixed;
-  // The stereo share of Eq. 5 falls linearly towards the scan: SGM's paths carry a LiDAR
-  // disparity well over a few pixels, and the stereo cost there mostly adds noise.
-  const int stereoShare = (256 - fixed) * std::clamp(distance, 1, kAdaptiveReach) / kAdaptiveReach;
-  return 256 - stereoShare;
+  // The stereo share of Eq. 5, 256 - w, shrinks towards the scan and with the scan's density.
+  const int nearness = std::clamp(distance, 1, kAdaptiveReach);
+  return 256 - (256 - fixed) * nearness * densityFactor256 / (kAdaptiveReach * 256);
 }
 
 void lidarWeights(const LidarPoints& points, const Parameters& params, ImageView<std::uint16_t> weights) {
   // The distances first, in place (no allocation per frame), then one table lookup per pixel:
-  // the weight depends on the distance only.
+  // with the frame's density fixed, the weight depends on the distance only.
   lidarDistance(points, weights);
+  const int factor = densityFactor256(lidarDensity256(weights));
   std::uint16_t table[kMaxLidarDistance + 1];
-  for (int d = 0; d <= kMaxLidarDistance; ++d) table[d] = static_cast<std::uint16_t>(lidarWeight(params, d));
+  for (int d = 0; d <= kMaxLidarDistance; ++d) table[d] = static_cast<std::uint16_t>(lidarWeight(params, d, factor));
   for (int y = 0; y < weights.height; ++y) {
     for (int x = 0; x < weights.width; ++x) weights(x, y) = table[weights(x, y)];
   }
