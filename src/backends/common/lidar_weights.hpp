@@ -10,10 +10,11 @@
 ///   pixels, so near the scan the stereo cost mostly adds noise; far from it (above the top beam)
 ///   stereo keeps the fixed share.
 /// - density: the frame's share of the scan area (pixels within kAdaptiveReach px of a point)
-///   that lies within 1 px of a point, rho. A dense scan (128 beams: rho ~ 0.63 on our synthetic
-///   frames, 64 beams: ~ 0.45, KITTI with a 64-beam LiDAR ~ 0.25-0.36) leaves short gaps that SGM
+///   that lies within 1 px of a point, rho. A dense scan (measured: 128 synthetic beams rho 0.63,
+///   64 synthetic beams 0.45, KITTI-like 64-beam frames 0.25-0.39) leaves short gaps that SGM
 ///   interpolates almost perfectly: the factor falls linearly from 1 at rho <= kSparseDensity256
-///   to 1/4 at rho >= kDenseDensity256.
+///   to 1/4 at rho >= kDenseDensity256. Measured per protocol in docs/RESULTS.md ("Range-adaptive
+///   fusion"), with the variants that did not help (a range term among them).
 
 #include <cstdint>
 
