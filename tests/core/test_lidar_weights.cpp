@@ -121,6 +121,17 @@ TEST(LidarWeight, AdaptiveByHand) {
   EXPECT_EQ(lidarWeight(p, 8, 256), 0);
 }
 
+TEST(LidarWeights, NoPointGivesTheFixedAlphaEverywhere) {
+  const LidarPoints none(5, 3, {});
+  Image<std::uint16_t> weights(5, 3);
+  Parameters p;
+  p.alphaMode = AlphaMode::Adaptive;
+  lidarWeights(none, p, weights.view());
+  for (int y = 0; y < 3; ++y) {
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(weights(x, y), alphaWeight(p.alpha));
+  }
+}
+
 TEST(LidarWeights, ImageFollowsTheDistanceTheDensityAndTheMode) {
   const LidarPoints points(7, 5, {{1, 1, 160}, {5, 4, 320}});
   Image<std::uint16_t> distance(7, 5), weights(7, 5);
