@@ -10,7 +10,7 @@ namespace lidar_sgm {
 namespace apps {
 
 const std::set<std::string>& sgmValueOptions() {
-  static const std::set<std::string> options{"alpha", "sigma", "lidar_cost_cap", "num_disparities", "min_disparity",
+  static const std::set<std::string> options{"alpha", "alpha_mode", "sigma", "lidar_cost_cap", "num_disparities", "min_disparity",
                                              "paths", "p1", "p2", "uniqueness", "lr_max_diff", "median", "census",
                                              "backend", "lidar_coverage_rows", "scale", "threads",
                                              "min_confidence", "disparity_range"};
@@ -25,9 +25,11 @@ const std::set<std::string>& sgmFlagOptions() {
 
 std::string sgmOptionsHelp() {
   const Parameters d;
-  char text[5200];
+  char text[5600];
   std::snprintf(text, sizeof(text),
                 "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
+                "  -alpha_mode fixed|adaptive  fixed: alpha at every pixel; adaptive: more LiDAR weight within 8 px of\n"
+                "                           a LiDAR point and in a dense scan, alpha far from a sparse one (default: %s)\n"
                 "  -sigma S                 LiDAR disparity std-dev [px] (default: %g)\n"
                 "  -lidar_cost_cap C        upper bound of the LiDAR cost, in [1, 255] (default: %d)\n"
                 "  -disparity_range lidar|fixed  where the search range comes from (default: lidar: from each\n"
@@ -58,7 +60,7 @@ std::string sgmOptionsHelp() {
                 "                           the disparity is right, is below C in [0, 1]; 0 keeps every pixel\n"
                 "                           (default: %g)\n"
                 "  -no_confidence           compute no confidence (faster; no confidence field, -min_confidence 0)\n",
-                d.alpha, d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
+                d.alpha, toString(d.alphaMode).c_str(), d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
                 d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows, d.scale, d.threads,
                 kDefaultMinConfidence);
   return text;
@@ -67,6 +69,12 @@ std::string sgmOptionsHelp() {
 Parameters parametersFrom(const Arguments& args) {
   Parameters p;
   p.alpha = static_cast<float>(args.number("alpha", p.alpha));
+  const std::string alphaMode = args.text("alpha_mode", toString(p.alphaMode));
+  try {
+    p.alphaMode = alphaModeFromString(alphaMode);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("option -alpha_mode: '" + alphaMode + "' must be fixed or adaptive");
+  }
   p.sigma = static_cast<float>(args.number("sigma", p.sigma));
   p.lidarCostCap = args.integer("lidar_cost_cap", p.lidarCostCap);
   p.numDisparities = args.integer("num_disparities", p.numDisparities);

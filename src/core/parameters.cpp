@@ -32,6 +32,9 @@ std::string validationError(const Parameters& p) {
   if (!std::isfinite(p.alpha) || p.alpha < 0.0f || p.alpha > 1.0f) {
     return rangeError("alpha", p.alpha, "in [0, 1]");
   }
+  if (p.alphaMode != AlphaMode::Fixed && p.alphaMode != AlphaMode::Adaptive) {
+    return rangeError("alphaMode", static_cast<int>(p.alphaMode), "Fixed (0) or Adaptive (1)");
+  }
   if (!std::isfinite(p.sigma) || p.sigma < 0.1f || p.sigma > 100.0f) {
     return rangeError("sigma", p.sigma, "in [0.1, 100] px");
   }
@@ -80,6 +83,14 @@ void validate(const Parameters& params) {
 
 std::string toString(CensusType type) {
   return type == CensusType::Census9x7 ? "census9x7" : "cs_census9x7";
+}
+
+std::string toString(AlphaMode mode) { return mode == AlphaMode::Adaptive ? "adaptive" : "fixed"; }
+
+AlphaMode alphaModeFromString(const std::string& text) {
+  if (text == "fixed") return AlphaMode::Fixed;
+  if (text == "adaptive") return AlphaMode::Adaptive;
+  throw std::invalid_argument("alpha mode '" + text + "': must be fixed or adaptive");
 }
 
 }  // namespace lidar_sgm

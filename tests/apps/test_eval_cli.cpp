@@ -148,6 +148,44 @@ TEST_F(EvalCli, HalfScaleRunReportsTheDensifiersFiguresAndItsSettings) {
   EXPECT_NE(text.str().find("matched at scale 0.5"), std::string::npos) << text.str();
 }
 
+TEST_F(EvalCli, AdaptiveAlphaRunReportsTheDensifiersFiguresAndItsMode) {
+  const RunResult r = runTool("-protocols P3 -p3_sets clear128 -synth_frames 1 -synth_size 310x94 -alpha_step 1 "
+                              "-alpha_mode adaptive -threads 2 -no_pictures -out " + dir_.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream jsonFile(dir_ / "results.json");
+  const nlohmann::json json = nlohmann::json::parse(jsonFile);
+  EXPECT_EQ(json.at("settings").at("alpha_mode").get<std::string>(), "adaptive");
+
+  eval::P3Options options;
+  options.frames = 1;
+  options.beams = 128;
+  options.width = 310;
+  options.height = 94;
+  const auto frames = eval::loadP3(options);
+  ASSERT_EQ(frames.size(), 1u);
+  const eval::EvalFrame& f = frames[0];
+  Densifier densifier;
+  densifier.parameters().alphaMode = AlphaMode::Adaptive;
+  densifier.parameters().numDisparities = f.numDisparities;
+  densifier.setComputeCloud(false);
+  densifier.setStereoPair(io::grayView(f.left), io::grayView(f.right));
+  densifier.runProjected(&f.lidar);
+  const eval::DisparityMetrics fused =
+      eval::evaluateDisparity(densifier.disparity().view(), f.groundTruth.view(), f.exclude.view());
+  bool found = false;
+  for (const auto& m : json.at("protocols").at(0).at("frames").at(0).at("methods")) {
+    if (m.at("method") != "fused_sgm" || m.at("best_alpha").get<bool>() || m.at("alpha").get<double>() != 0.7) continue;
+    found = true;
+    EXPECT_DOUBLE_EQ(m.at("correct").get<double>(), fused.correct);
+    EXPECT_DOUBLE_EQ(m.at("rmse").get<double>(), fused.rmse);
+  }
+  EXPECT_TRUE(found) << json.dump(2);
+  std::ifstream md(dir_ / "results.md");
+  std::stringstream text;
+  text << md.rdbuf();
+  EXPECT_NE(text.str().find("alpha mode adaptive"), std::string::npos) << text.str();
+}
+
 TEST_F(EvalCli, TheDataRootIsTheOptionElseTheEnvironmentElseBesideTheWorkingDirectory) {
   // An empty folder holds no P1 frame: the error names the root the tool looked in.
   const fs::path empty = dir_ / "empty_data";

@@ -10,6 +10,7 @@
 
 #include "common/arguments.hpp"
 #include "common/pcl_style_options.hpp"
+#include "common/sgm_options.hpp"
 
 namespace lidar_sgm {
 namespace apps {
@@ -111,6 +112,23 @@ TEST(ArgumentsOnCli11, BadLinesAreRejectedWithTheProblemNamed) {
     ADD_FAILURE() << "'abc' was read as a number";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "option -alpha: 'abc' is not a finite number");
+  }
+}
+
+TEST(SgmOptions, AlphaModeIsReadAndABadOneIsNamed) {
+  const auto parseSgm = [](const Strings& line) {
+    std::vector<const char*> argv{"tool"};
+    for (const std::string& s : line) argv.push_back(s.c_str());
+    return Arguments(static_cast<int>(argv.size()), argv.data(), sgmValueOptions(), sgmFlagOptions());
+  };
+  EXPECT_EQ(parametersFrom(parseSgm({})).alphaMode, AlphaMode::Fixed);
+  EXPECT_EQ(parametersFrom(parseSgm({"-alpha_mode", "adaptive"})).alphaMode, AlphaMode::Adaptive);
+  EXPECT_EQ(parametersFrom(parseSgm({"--alpha_mode=fixed"})).alphaMode, AlphaMode::Fixed);
+  try {
+    parametersFrom(parseSgm({"-alpha_mode", "sometimes"}));
+    ADD_FAILURE() << "'sometimes' was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "option -alpha_mode: 'sometimes' must be fixed or adaptive");
   }
 }
 

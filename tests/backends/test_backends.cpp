@@ -6,12 +6,14 @@
 
 #include <functional>
 #include <memory>
+#include <random>
 #include <ostream>
 #include <sstream>
 #include <string>
 #include <tuple>
 
 #include "backend_test_scenes.hpp"
+#include "backends/common/lidar_weights.hpp"
 #include "backends/common/stages.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #ifdef LIDAR_SGM_TEST_CPU_BACKEND
@@ -38,6 +40,8 @@ struct StageSet {
   std::function<void(const LidarPoints&, int, ImageView<std::uint8_t>)> lidarCoverage;
   std::function<void(const MatchingCostVolume&, const MatchingCostVolume&, ImageView<const std::uint8_t>, int, bool,
                      MatchingCostVolume&)> fuseCosts;
+  std::function<void(const MatchingCostVolume&, const MatchingCostVolume&, ImageView<const std::uint8_t>,
+                     ImageView<const std::uint16_t>, bool, MatchingCostVolume&)> fuseCostsPerPixel;
   std::function<void(const MatchingCostVolume&, int, int, int, AggregatedCostVolume&)> aggregatePaths;
   std::function<void(const AggregatedCostVolume&, int, int, bool, SelectedDisparity)> selectDisparity;
   std::function<void(const AggregatedCostVolume&, int, ImageView<std::int16_t>)> rightDisparityIndex;
@@ -69,6 +73,9 @@ bool stagesOf(const std::string& backend, int threads, StageSet& s) {
     s.lidarCoverage = [t](const auto& p, int rows, auto out) { cpu::lidarCoverage(p, rows, out, t); };
     s.fuseCosts = [t](const auto& l, const auto& st, auto support, int w, bool flag, auto& out) {
       cpu::fuseCosts(l, st, support, w, flag, out, t);
+    };
+    s.fuseCostsPerPixel = [t](const auto& l, const auto& st, auto support, auto weights, bool flag, auto& out) {
+      cpu::fuseCosts(l, st, support, weights, flag, out, t);
     };
     s.aggregatePaths = [t](const auto& cost, int P1, int P2, int paths, auto& sum) {
       cpu::aggregatePaths(cost, P1, P2, paths, sum, t);
@@ -214,6 +221,27 @@ TEST_P(BackendStages, LidarCostSupportCoverageAndFusion) {
           stages_.fuseCosts(expected, stereo, std::as_const(supportExpected).view(), w, stereoWithoutLidar,
                             fusedActual);
           EXPECT_TRUE(sameVolumes(fusedExpected, fusedActual)) << "fuseCosts w " << w;
+        }
+      }
+      // Per-pixel weights: every value of [0, 256] at random, and the adaptive weights of the scene.
+      Image<std::uint16_t> randomWeights(c.width, c.height), adaptiveWeights(c.width, c.height);
+      std::mt19937 engine(13);
+      for (int y = 0; y < c.height; ++y) {
+        for (int x = 0; x < c.width; ++x) randomWeights(x, y) = static_cast<std::uint16_t>(engine() % 257u);
+      }
+      Parameters adaptive;
+      adaptive.alphaMode = AlphaMode::Adaptive;
+      lidarWeights(scene.lidar, adaptive, adaptiveWeights.view());
+      for (const Image<std::uint16_t>* weights : {&randomWeights, &adaptiveWeights}) {
+        for (const bool stereoWithoutLidar : {false, true}) {
+          MatchingCostVolume fusedExpected(c.width, c.height, c.numDisparities);
+          MatchingCostVolume fusedActual(c.width, c.height, c.numDisparities);
+          cpu_ref::fuseCosts(expected, stereo, std::as_const(supportExpected).view(), weights->view(),
+                             stereoWithoutLidar, fusedExpected);
+          stages_.fuseCostsPerPixel(expected, stereo, std::as_const(supportExpected).view(), weights->view(),
+                                    stereoWithoutLidar, fusedActual);
+          EXPECT_TRUE(sameVolumes(fusedExpected, fusedActual))
+              << "fuseCosts per pixel, " << (weights == &randomWeights ? "random" : "adaptive") << " weights";
         }
       }
     }
@@ -388,6 +416,16 @@ std::vector<FrameCase> frameCases() {
       {"TripleStereo", 131, 61, 8, "triple", [](Parameters& p) { p.numDisparities = 64; }},
       {"TripleFused16Bit", 131, 61, 16, "triple_fused", [](Parameters& p) { p.numDisparities = 64; }},
       {"HalfScaleFused", 131, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 64; p.scale = 0.5f; }},
+      {"AdaptiveAlpha", 131, 61, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 64; p.alphaMode = AlphaMode::Adaptive; }},
+      {"AdaptiveAlphaOddSize", 97, 41, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 32; p.minDisparity = 3; p.alpha = 0.4f; p.alphaMode = AlphaMode::Adaptive; }},
+      {"AdaptiveAlphaStereoCostWithoutLidar", 99, 41, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 32; p.stereoCostWithoutLidar = true; p.alphaMode = AlphaMode::Adaptive; }},
+      {"AdaptiveAlphaTripleFused", 131, 61, 16, "triple_fused",
+       [](Parameters& p) { p.numDisparities = 64; p.alphaMode = AlphaMode::Adaptive; }},
+      {"AdaptiveAlphaHalfScale", 131, 61, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 64; p.scale = 0.5f; p.alphaMode = AlphaMode::Adaptive; }},
       {"HalfScaleStereo16Bit", 133, 63, 16, "stereo",
        [](Parameters& p) { p.numDisparities = 64; p.minDisparity = 4; p.scale = 0.5f; }},
   };

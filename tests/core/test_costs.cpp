@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "backends/common/stages.hpp"
@@ -346,6 +347,38 @@ TEST(FuseCosts, StereoCostWithoutLidarKeepsStereoWhereNoSupport) {
   cpu_ref::fuseCosts(in.lidar, in.stereo, in.support.view(), 179, true, fused);
   expectCosts(fused, 0, 0, {43, 19, 31, 12});  // support 1: fused
   expectCosts(fused, 1, 0, {0, 62, 20, 31});   // support 0: C_S unchanged
+}
+
+TEST(FuseCosts, PerPixelWeights) {
+  const FusionInput in;
+  Image<std::uint16_t> weights(2, 1);
+  weights(0, 0) = 179;  // the paper's alpha at pixel 0 ...
+  weights(1, 0) = 237;  // ... more LiDAR at pixel 1
+  MatchingCostVolume fused(2, 1, 4);
+  cpu_ref::fuseCosts(in.lidar, in.stereo, in.support.view(), std::as_const(weights).view(), false, fused);
+  expectCosts(fused, 0, 0, {43, 19, 31, 12});  // as ByHandAlpha07
+  // (237*62 + 128) >> 8 = 14822 >> 8 = 57;  (19*62 + 128) >> 8 = 1306 >> 8 = 5
+  // (237*36 + 19*20 + 128) >> 8 = (8532 + 380 + 128) >> 8 = 9040 >> 8 = 35
+  // (237*4 + 19*31 + 128) >> 8 = (948 + 589 + 128) >> 8 = 1665 >> 8 = 6
+  expectCosts(fused, 1, 0, {57, 5, 35, 6});
+  // With stereoCostWithoutLidar, pixel 1 (support 0) keeps C_S whatever its weight.
+  cpu_ref::fuseCosts(in.lidar, in.stereo, in.support.view(), std::as_const(weights).view(), true, fused);
+  expectCosts(fused, 1, 0, {0, 62, 20, 31});
+}
+
+TEST(FuseCosts, OneWeightIsAConstantWeightImage) {
+  const FusionInput in;
+  for (const int w : {0, 1, 179, 255, 256}) {
+    const Image<std::uint16_t> weights(2, 1, static_cast<std::uint16_t>(w));
+    for (const bool stereoWithoutLidar : {false, true}) {
+      MatchingCostVolume byImage(2, 1, 4), byWeight(2, 1, 4);
+      cpu_ref::fuseCosts(in.lidar, in.stereo, in.support.view(), weights.view(), stereoWithoutLidar, byImage);
+      cpu_ref::fuseCosts(in.lidar, in.stereo, in.support.view(), w, stereoWithoutLidar, byWeight);
+      for (int x = 0; x < 2; ++x) {
+        for (int d = 0; d < 4; ++d) EXPECT_EQ(byImage(x, 0, d), byWeight(x, 0, d)) << "w " << w;
+      }
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

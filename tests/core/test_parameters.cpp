@@ -60,6 +60,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadParameter{"alpha", [](Parameters& p) { p.alpha = 1.5f; }, "[0, 1]"},
         BadParameter{"alpha", [](Parameters& p) { p.alpha = -0.1f; }, "[0, 1]"},
         BadParameter{"alpha", [](Parameters& p) { p.alpha = std::numeric_limits<float>::quiet_NaN(); }, "[0, 1]"},
+        BadParameter{"alphaMode", [](Parameters& p) { p.alphaMode = static_cast<AlphaMode>(7); },
+                     "Fixed (0) or Adaptive (1)"},
         BadParameter{"sigma", [](Parameters& p) { p.sigma = 0.0f; }, "[0.1, 100]"},
         BadParameter{"sigma", [](Parameters& p) { p.sigma = std::numeric_limits<float>::infinity(); }, "[0.1, 100]"},
         BadParameter{"lidarCostCap", [](Parameters& p) { p.lidarCostCap = 0; }, "[1, 255]"},
@@ -71,6 +73,19 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadParameter>& paramInfo) {
       return std::string(paramInfo.param.name) + std::to_string(paramInfo.index);
     });
+
+TEST(Parameters, AlphaModeNamesRoundTripAndUnknownOnesAreRejected) {
+  EXPECT_EQ(Parameters().alphaMode, AlphaMode::Fixed);
+  for (const AlphaMode mode : {AlphaMode::Fixed, AlphaMode::Adaptive}) {
+    EXPECT_EQ(alphaModeFromString(toString(mode)), mode);
+  }
+  try {
+    alphaModeFromString("sometimes");
+    ADD_FAILURE() << "'sometimes' was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "alpha mode 'sometimes': must be fixed or adaptive");
+  }
+}
 
 TEST(Parameters, SetParametersKeepsTheOldOnesWhenRejected) {
   auto matcher = Matcher::create(Backend::CpuRef);

@@ -37,7 +37,7 @@ constexpr std::size_t fieldCount() {
 }
 
 // A new field needs a setter/getter pair in SGMDensification and a line in the test below.
-static_assert(fieldCount<Parameters>() == 20, "Parameters changed: add the setter and test it here");
+static_assert(fieldCount<Parameters>() == 21, "Parameters changed: add the setter and test it here");
 static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: add the setter");
 static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: add the setter");
 static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: add the setter");
@@ -49,6 +49,7 @@ void expectEqual(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.P2, b.P2);
   EXPECT_EQ(a.paths, b.paths);
   EXPECT_EQ(a.alpha, b.alpha);
+  EXPECT_EQ(a.alphaMode, b.alphaMode);
   EXPECT_EQ(a.sigma, b.sigma);
   EXPECT_EQ(a.lidarCostCap, b.lidarCostCap);
   EXPECT_EQ(a.stereoCostWithoutLidar, b.stereoCostWithoutLidar);
@@ -111,6 +112,8 @@ TEST(SGMDensificationParameters, EverySetterReachesTheDensifiersOwnField) {
   check("paths", sgm, &Sgm::setPaths, &Sgm::getPaths, p.paths);
   p.alpha = 0.25f;
   check("alpha", sgm, &Sgm::setAlpha, &Sgm::getAlpha, p.alpha);
+  p.alphaMode = AlphaMode::Adaptive;
+  check("alphaMode", sgm, &Sgm::setAlphaMode, &Sgm::getAlphaMode, p.alphaMode);
   p.sigma = 3.5f;
   check("sigma", sgm, &Sgm::setSigma, &Sgm::getSigma, p.sigma);
   p.lidarCostCap = 40;

@@ -11,6 +11,12 @@ enum class CensusType {
   CenterSymmetric9x7,      ///< 31 bits: pixel pairs mirrored about the centre (half the work).
 };
 
+/// How the LiDAR weight of Eq. 5 is chosen for each pixel.
+enum class AlphaMode {
+  Fixed,     ///< alpha everywhere (the paper)
+  Adaptive,  ///< more LiDAR weight near the scan's points and in a dense scan
+};
+
 /// Parameter names follow OpenCV's StereoSGBM where they mean the same thing.
 /// Every value is checked by validate(); nothing is silently coerced.
 struct Parameters {
@@ -20,6 +26,12 @@ struct Parameters {
   int P2 = 100;               ///< penalty for larger jumps (Eq. 1), P1 < P2 <= 4000
   int paths = 4;              ///< SGM paths: 4 (horizontal + vertical, as the paper) or 8 (+ diagonals)
   float alpha = 0.7f;         ///< LiDAR weight in C = alpha*C_L + (1-alpha)*C_S (Eq. 5), in [0, 1]
+  /// Fixed: alpha at every pixel (the paper). Adaptive (range-adaptive fusion, the paper's future
+  /// work): the stereo share 1 - alpha is scaled per pixel by the distance to the nearest LiDAR
+  /// point (1/8 at 0-1 px, rising linearly to 1 at 8 px and beyond) and by the frame's scan density
+  /// (1 for a 64-beam-like scan, down to 1/4 for a dense one), so alpha is the weight far from a
+  /// sparse scan (src/backends/common/lidar_weights.hpp; measured in docs/RESULTS.md).
+  AlphaMode alphaMode = AlphaMode::Fixed;
   float sigma = 2.0f;         ///< std-dev of a LiDAR disparity [px] (Eq. 4), in [0.1, 100]
   /// Upper bound of C_L (Eq. 4). Default 62 = the largest census cost, so that alpha weighs two
   /// costs of the same range and a wrong LiDAR point (seen by the LiDAR, hidden from the camera)
@@ -76,5 +88,8 @@ std::string validationError(const Parameters& params);
 void validate(const Parameters& params);
 
 std::string toString(CensusType type);
+std::string toString(AlphaMode mode);  ///< "fixed" or "adaptive"
+/// "fixed" or "adaptive"; std::invalid_argument naming the text otherwise.
+AlphaMode alphaModeFromString(const std::string& text);
 
 }  // namespace lidar_sgm

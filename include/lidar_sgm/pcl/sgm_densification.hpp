@@ -133,6 +133,8 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   int getPaths() const { return densifier_.parameters().paths; }
   void setAlpha(float alpha) { densifier_.parameters().alpha = alpha; }
   float getAlpha() const { return densifier_.parameters().alpha; }
+  void setAlphaMode(AlphaMode mode) { densifier_.parameters().alphaMode = mode; }
+  AlphaMode getAlphaMode() const { return densifier_.parameters().alphaMode; }
   void setSigma(float sigma) { densifier_.parameters().sigma = sigma; }
   float getSigma() const { return densifier_.parameters().sigma; }
   void setLidarCostCap(int cap) { densifier_.parameters().lidarCostCap = cap; }

@@ -81,8 +81,13 @@ void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDi
 /// spares these pixels in fused mode.
 void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> coverage);
 
-/// Fused cost (Eq. 5): C = (w*C_L + (256-w)*C_S + 128) >> 8 with w = alphaWeight(alpha).
+/// Fused cost (Eq. 5): C = (w*C_L + (256-w)*C_S + 128) >> 8 with the pixel's LiDAR weight
+/// w = weights(x, y) in [0, 256] (lidarWeights: alphaWeight(alpha) everywhere with a fixed alpha).
 /// Where support is 0 and stereoCostWithoutLidar is set, C = C_S (the LiDAR knows nothing there).
+void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo,
+               ImageView<const std::uint8_t> support, ImageView<const std::uint16_t> weights,
+               bool stereoCostWithoutLidar, MatchingCostVolume& fused);
+/// The same with one weight for every pixel: exactly fuseCosts on a constant weight image.
 void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo,
                ImageView<const std::uint8_t> support, int alphaWeight256,
                bool stereoCostWithoutLidar, MatchingCostVolume& fused);

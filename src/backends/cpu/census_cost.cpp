@@ -123,13 +123,14 @@ void CensusCostRowBytes(const std::uint64_t* leftRow, const std::uint8_t* rightP
     const int dEnd = std::clamp(x - minDisparity + 1, dBegin, D);
     if (fusion == nullptr || (fusion->touched[x] == 0 && fusion->stereoCostWithoutLidar)) {
       CostPixel<kBytes, Fusion::None>(leftRow[x], planes, planeStride, D, dBegin, dEnd, nullptr, 0, c);
-    } else if (fusion->touched[x] != 0) {
+      continue;
+    }
+    const int weight = fusion->weights != nullptr ? fusion->weights[x] : fusion->alphaWeight256;
+    if (fusion->touched[x] != 0) {
       CostPixel<kBytes, Fusion::WithLidar>(leftRow[x], planes, planeStride, D, dBegin, dEnd,
-                                           fusion->lidar + static_cast<std::size_t>(x - x0) * D,
-                                           fusion->alphaWeight256, c);
+                                           fusion->lidar + static_cast<std::size_t>(x - x0) * D, weight, c);
     } else {
-      CostPixel<kBytes, Fusion::ZeroLidar>(leftRow[x], planes, planeStride, D, dBegin, dEnd, nullptr,
-                                           fusion->alphaWeight256, c);
+      CostPixel<kBytes, Fusion::ZeroLidar>(leftRow[x], planes, planeStride, D, dBegin, dEnd, nullptr, weight, c);
     }
   }
 }
@@ -179,10 +180,10 @@ void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes
 
 void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
-                        const std::uint8_t* lidar, const std::uint8_t* touched, int alphaWeight256,
-                        bool stereoCostWithoutLidar, std::uint8_t* cost) {
+                        const std::uint8_t* lidar, const std::uint8_t* touched, const std::uint16_t* weights,
+                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost) {
   const int bytes = type == CensusType::Census9x7 ? 8 : 4;
-  const CostFusion fusion{lidar, touched, alphaWeight256, stereoCostWithoutLidar};
+  const CostFusion fusion{lidar, touched, weights, alphaWeight256, stereoCostWithoutLidar};
   HWY_DYNAMIC_DISPATCH(CensusCostRowImpl)(leftRow, rightPlanes, planeStride, pad, bytes, width, x0, x1, minDisparity,
                                           numDisparities, &fusion, cost);
 }

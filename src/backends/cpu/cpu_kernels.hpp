@@ -34,17 +34,19 @@ void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes
 
 // C_S fused at once with C_L (Eq. 5) as in fuseCosts: `lidar` holds C_L (D per pixel from x0)
 // of the pixels marked in `touched` (per pixel from x = 0); the others have C_L = 0, or keep C_S
-// with stereoCostWithoutLidar.
+// with stereoCostWithoutLidar. The LiDAR weight is weights[x] (per pixel from x = 0), or
+// alphaWeight256 everywhere when weights is nullptr (a fixed alpha).
 struct CostFusion {
   const std::uint8_t* lidar;
   const std::uint8_t* touched;
+  const std::uint16_t* weights;
   int alphaWeight256;
   bool stereoCostWithoutLidar;
 };
 void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
-                        const std::uint8_t* lidar, const std::uint8_t* touched, int alphaWeight256,
-                        bool stereoCostWithoutLidar, std::uint8_t* cost);
+                        const std::uint8_t* lidar, const std::uint8_t* touched, const std::uint16_t* weights,
+                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost);
 
 // vertical_census_cost.cpp: Triple-SGM C_V for pixels x0 .. x1-1 of row y.
 void verticalCensusCostRow(const std::uint64_t* leftRow, ImageView<const std::uint64_t> upCensus, int y, int x0,

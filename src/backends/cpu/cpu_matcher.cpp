@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "backends/common/lidar_weights.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
@@ -48,6 +49,7 @@ struct CpuMatcher::Frame {
   int D = 0;
   int scale = 1;         // census cost scale: 2 for the 31-bit centre-symmetric census
   int alphaWeight = 0;
+  bool adaptiveAlpha = false;  // fused mode: per-pixel weights (lidarWeights_), else alphaWeight everywhere
   int verticalPaths = 1;  // per sweep: 1 with 4 paths, 3 with 8
   bool lrCheck = false;
   bool confidence = false;    // the peak-ratio margin (core/confidence.hpp)
@@ -94,6 +96,7 @@ void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& 
   f.D = params.numDisparities;
   f.scale = params.censusType == CensusType::Census9x7 ? 1 : 2;
   f.alphaWeight = alphaWeight(params.alpha);
+  f.adaptiveAlpha = mode == MatchMode::Fused && params.alphaMode == AlphaMode::Adaptive;
   f.verticalPaths = params.paths == 8 ? 3 : 1;
   f.threads = effectiveThreads(params);
   // The largest matching cost, and so the largest path cost L <= C + P2 (Eq. 1).
@@ -139,6 +142,11 @@ void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& 
       for (int y = y0; y < y1; ++y) lidarTouchedRow(*lidar, y, touched_.view().row(y));
     });
   }
+  if (f.adaptiveAlpha) {
+    // Shared with every backend (backends/common): the same integer weights as cpu_ref's.
+    lidarWeights_.resize(f.width, f.height);
+    lidarWeights(*lidar, params, lidarWeights_.view());
+  }
   timings_.census = msBetween(start, Clock::now());
   runStages(f, disparity);
 }
@@ -170,13 +178,14 @@ void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* 
     lap(w.lidarCostMs);
   }
   if (f.mode == MatchMode::LidarOnly) return;
+  const std::uint16_t* weights = f.adaptiveAlpha ? lidarWeights_.view().row(y) : nullptr;
   const std::uint64_t* leftRow = leftCensus_.view().row(y);
   const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
   if (!f.up) {
     // C_S, fused per pixel while it is in the L1 cache.
     if (f.mode == MatchMode::Fused) {
       censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity,
-                         f.D, lidar, touched_.view().row(y), f.alphaWeight, p.stereoCostWithoutLidar, cost);
+                         f.D, lidar, touched_.view().row(y), weights, f.alphaWeight, p.stereoCostWithoutLidar, cost);
     } else {
       censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity, f.D,
                     cost);
@@ -193,7 +202,14 @@ void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* 
   combineCameraCostRow(camera, w.vertical.data(), n, camera);
   lap(w.verticalCostMs);
   if (f.mode != MatchMode::Fused) return;
-  fuseCostRow(lidar, camera, n, f.alphaWeight, cost);
+  if (weights == nullptr) {
+    fuseCostRow(lidar, camera, n, f.alphaWeight, cost);
+  } else {
+    for (int x = x0; x < x1; ++x) {
+      const auto offset = static_cast<std::size_t>(x - x0) * f.D;
+      fuseCostRow(lidar + offset, camera + offset, static_cast<std::size_t>(f.D), weights[x], cost + offset);
+    }
+  }
   if (p.stereoCostWithoutLidar) {
     const std::uint8_t* touched = touched_.view().row(y);
     for (int x = x0; x < x1; ++x) {

@@ -81,6 +81,7 @@ class CpuMatcher final : public Matcher {
   Image<std::int16_t> rightIndex_;
   Image<std::uint8_t> coverage_;
   Image<std::uint8_t> touched_;  // 1 where a LiDAR point lies in the pixel's 3x3 neighbourhood
+  Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
   LidarCostTable table_;
   float tableSigma_ = 0;
   int tableCap_ = -1;

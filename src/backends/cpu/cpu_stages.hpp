@@ -38,6 +38,9 @@ void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> 
 void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo,
                ImageView<const std::uint8_t> support, int alphaWeight256, bool stereoCostWithoutLidar,
                MatchingCostVolume& fused, int threads);
+void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo,
+               ImageView<const std::uint8_t> support, ImageView<const std::uint16_t> weights,
+               bool stereoCostWithoutLidar, MatchingCostVolume& fused, int threads);
 
 void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum,
                     int threads);

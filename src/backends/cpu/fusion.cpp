@@ -56,6 +56,25 @@ void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo
   });
 }
 
+void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo,
+               ImageView<const std::uint8_t> support, ImageView<const std::uint16_t> weights,
+               bool stereoCostWithoutLidar, MatchingCostVolume& fused, int threads) {
+  const int width = stereo.width();
+  const auto D = static_cast<std::size_t>(stereo.numDisparities());
+  parallelRanges(stereo.height(), threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      // One weight per pixel: the row kernel runs over the pixel's D costs.
+      for (int x = 0; x < width; ++x) {
+        if (stereoCostWithoutLidar && support(x, y) == 0) {
+          std::memcpy(fused.at(x, y), stereo.at(x, y), D);
+        } else {
+          fuseCostRow(lidar.at(x, y), stereo.at(x, y), D, weights(x, y), fused.at(x, y));
+        }
+      }
+    }
+  });
+}
+
 }  // namespace cpu
 }  // namespace lidar_sgm
 #endif  // HWY_ONCE

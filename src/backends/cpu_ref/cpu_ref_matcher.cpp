@@ -3,6 +3,7 @@
 #include <chrono>
 #include <utility>
 
+#include "backends/common/lidar_weights.hpp"
 #include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
@@ -91,7 +92,10 @@ void CpuRefMatcher::runStages(const Parameters& params, const GrayImageView& lef
   const MatchingCostVolume* cost = mode == MatchMode::StereoOnly ? cameraCost : &lidarCost_;
   if (mode == MatchMode::Fused) {
     fusedCost_.resize(width, height, D);
-    cpu_ref::fuseCosts(lidarCost_, *cameraCost, support_.view(), alphaWeight(p.alpha),
+    // The LiDAR weight of each pixel, alphaWeight(alpha) everywhere with a fixed alpha.
+    lidarWeights_.resize(width, height);
+    lidarWeights(*lidar, p, lidarWeights_.view());
+    cpu_ref::fuseCosts(lidarCost_, *cameraCost, support_.view(), std::as_const(lidarWeights_).view(),
                        p.stereoCostWithoutLidar, fusedCost_);
     cost = &fusedCost_;
     timings_.fuseCosts = clock.lapMs();

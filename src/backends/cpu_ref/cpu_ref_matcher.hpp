@@ -35,6 +35,7 @@ class CpuRefMatcher final : public Matcher {
   MatchingCostVolume cameraCost_;      // C_S3 = (C_S + C_V + 1) >> 1, Triple-SGM only
   MatchingCostVolume lidarCost_;
   MatchingCostVolume fusedCost_;
+  Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5, fused mode
   AggregatedCostVolume sum_;
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;
