@@ -11,6 +11,7 @@
 #include <pcl/console/print.h>
 
 #include "common/arguments.hpp"
+#include "common/filter_options.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
@@ -56,6 +57,7 @@ void printHelp(const char* program) {
       "                           +-%d rows)\n"
       "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
       "                           cleared, nothing was measured there)\n"
+      "%s"
       "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
       "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
       "                           0 = none or beyond -max_depth)\n"
@@ -65,7 +67,7 @@ void printHelp(const char* program) {
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
       projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
-      projection.occlusion.halfHeight);
+      projection.occlusion.halfHeight, lidar_sgm::apps::filterOptionsHelp().c_str());
 }
 
 /// "1242x375" -> (1242, 375).
@@ -135,6 +137,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   sgm.setProjectionOptions(projection);
   sgm.setKeepOrganized(args.has("keep_organized"));
   sgm.setCropToScan(!args.has("no_crop_to_scan"));
+  sgm.setOutputFilters(lidar_sgm::apps::outputFiltersFrom(args));
   const OutputOptions out = outputOptionsFrom(args);
   sgm.setOutputFrame(out.frame);
   sgm.setMaxDepth(out.maxDepth);
@@ -171,11 +174,13 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const auto& stats = sgm.getProjectedLidar().stats;
   const auto& used = sgm.getDisparityImage();
   std::printf("Projecting [done, %.0f ms : %s]\n", timings.project, stats.describe().c_str());
-  std::printf("Matching (%s, alpha %g%s) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity]\n",
+  std::printf("Matching (%s, alpha %g%s) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity; filters "
+              "removed %zu sky, %zu outlier pixels]\n",
               lidar_sgm::toString(sgm.getLastMode()).c_str(),
               sgm.getLastMode() == lidar_sgm::MatchMode::Fused ? params.alpha : 1.0,
               params.scale == 1.0f ? "" : ", matched at scale 0.5", timings.match, used.width(),
-              used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()));
+              used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()),
+              sgm.getFilterStats().sky, sgm.getFilterStats().outliers);
   std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
               dense.width, dense.height, frame.c_str());
 
@@ -207,10 +212,10 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
 int run(int argc, char** argv) {
   using lidar_sgm::apps::joined;
   const Arguments args(argc, argv,
-                       joined(lidar_sgm::apps::sgmValueOptions(),
+                       joined(joined(lidar_sgm::apps::sgmValueOptions(), lidar_sgm::apps::filterValueOptions()),
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
                                "disparity", "depth", "color"}),
-                       joined(lidar_sgm::apps::sgmFlagOptions(),
+                       joined(joined(lidar_sgm::apps::sgmFlagOptions(), lidar_sgm::apps::filterFlagOptions()),
                               {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
@@ -248,6 +253,7 @@ int run(int argc, char** argv) {
     }
   }
   lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
+  lidar_sgm::apps::outputFiltersFrom(args);
   lidar_sgm::apps::backendFrom(args);
   outputOptionsFrom(args);
   int width = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/arguments.hpp"
+#include "common/filter_options.hpp"
 #include "common/help_version.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
@@ -49,6 +50,8 @@ void printHelp(const char* program) {
       "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n"
       "  -no_pictures       skip the per-frame pictures\n"
       "  and every SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the LiDAR-SGM methods\n"
+      "  and its output-filter options (-no_sky_filter, -no_outlier_filter, -sky_texture T,\n"
+      "  -outlier_min_neighbours N) for them too\n"
       "  -h, --help         this help\n"
       "  --version          the tool's name and version\n"
       "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
@@ -119,9 +122,9 @@ void printPlan(const GroupSelection& selection, const std::string& out, const Gr
 int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
-      apps::joined(apps::sgmValueOptions(),
+      apps::joined(apps::joined(apps::sgmValueOptions(), apps::filterValueOptions()),
                    {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
-      apps::joined(apps::sgmFlagOptions(), {"no_pictures"}));
+      apps::joined(apps::joined(apps::sgmFlagOptions(), apps::filterFlagOptions()), {"no_pictures"}));
   if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
     throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
@@ -141,6 +144,7 @@ int run(int argc, char** argv) {
   runOptions.threads = threads;
   runOptions.base = base;
   runOptions.backend = backend;
+  runOptions.filters = apps::outputFiltersFrom(args);
   const GroupSelection selection = selectionFrom(args, root);
   printPlan(selection, out.empty() ? "DIR" : out, runOptions, !args.has("no_pictures"));
   if (out.empty()) {

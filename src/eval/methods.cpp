@@ -72,13 +72,14 @@ namespace {
 /// A LiDAR-SGM method as the tools run it: the Densifier on the frame's projected scan, its mode
 /// following the inputs it is given (and the LiDAR-only crop on, its default).
 Image<std::int16_t> runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params,
-                                 Backend backend) {
+                                 Backend backend, const OutputFilterOptions& filters) {
   const bool images = method.kind != MethodKind::LidarSgm;
   const bool lidar = method.kind == MethodKind::LidarSgm || method.kind == MethodKind::FusedSgm ||
                      method.kind == MethodKind::ThreeCamerasLidar;
   Densifier densifier;
   densifier.setParameters(params);
   densifier.setBackend(backend);
+  densifier.setOutputFilters(filters);
   densifier.setComputeCloud(false);  // the protocols score the disparity
   if (images) densifier.setStereoPair(io::grayView(frame.left), io::grayView(frame.right));
   if (method.needsThirdCamera()) densifier.setUpCamera(io::grayView(frame.up), frame.upBaselineRatio);
@@ -88,7 +89,8 @@ Image<std::int16_t> runDensifier(const Method& method, const EvalFrame& frame, c
 
 }  // namespace
 
-MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend) {
+MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend,
+                       const OutputFilterOptions& filters) {
   if (method.needsThirdCamera() && frame.up.empty()) {
     throw std::invalid_argument(displayName(method) + " needs a third camera; frame " + frame.name + " has none");
   }
@@ -111,7 +113,7 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
       // The kinds without a LiDAR weight of their own have it by definition (MethodKind).
       params.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
                                         : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
-      out.disparity = runDensifier(method, frame, params, backend);
+      out.disparity = runDensifier(method, frame, params, backend, filters);
       break;
     }
   }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "lidar_sgm/geometry/scan_extent.hpp"
+#include "output_filters_step.hpp"
 
 namespace lidar_sgm {
 
@@ -152,6 +153,8 @@ void Densifier::prepareMatcher() {
 }
 
 void Densifier::match(const LidarPoints* lidar) {
+  validate(outputFilters_.sky);
+  validate(outputFilters_.outliers);
   const auto start = std::chrono::steady_clock::now();
   const bool useLidar = lidar != nullptr && !lidar->empty();
   if (!useLidar && !hasStereoPair()) {
@@ -183,6 +186,8 @@ void Densifier::match(const LidarPoints* lidar) {
     // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
     geometry::cropToScanRows(disparity_.view(), projected_.samples, params_.lidarCoverageRows, 2);
   }
+  filterStats_ = useLidar ? applyOutputFilters(disparity_.view(), projected_.samples, left, outputFilters_)
+                          : OutputFilterStats{};
   timings_.match = millisecondsSince(start);
 }
 

@@ -31,6 +31,7 @@ struct GroupRunOptions {
   std::string picturesDir;     ///< per-frame pictures go here; empty: none
   Parameters base;             ///< the LiDAR-SGM methods' parameters (alpha and numDisparities are set per run)
   Backend backend = Backend::Auto;
+  OutputFilterOptions filters;  ///< the Densifier's sky and outlier filters for the LiDAR-SGM methods
 };
 
 /// Runs every method of `group` and the fused method at every alpha on each frame, in parallel

@@ -10,6 +10,7 @@
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/core/parameters.hpp"
+#include "lidar_sgm/pipeline/output_filters.hpp"
 #include "lidar_sgm/eval/eval_frame.hpp"
 
 namespace lidar_sgm {
@@ -58,9 +59,10 @@ struct MethodOutput {
 /// frame's LiDAR, no cloud) with `base` (the tools' SGM options, scale and threads included) on
 /// `backend`, alpha the method's and numDisparities the frame's (rounded up to a multiple of 32
 /// at scale 0.5, which needs one). The baselines ignore `base`. Throws std::invalid_argument
-/// when the frame lacks what the method needs.
+/// when the frame lacks what the method needs. `filters`: the Densifier's output filters (its
+/// defaults, as the tools ship them).
 MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base = {},
-                       Backend backend = Backend::Auto);
+                       Backend backend = Backend::Auto, const OutputFilterOptions& filters = {});
 
 /// The search range of a frame whose protocol chose `frameNumDisparities`, at `scale`: the
 /// same at scale 1; at 0.5 rounded up to a multiple of 32 (the half-scale search range must be

@@ -16,13 +16,14 @@
 #include "lidar_sgm/geometry/calibration.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/output_filters.hpp"
 
 namespace lidar_sgm {
 
 /// Wall-clock time of the steps of the last run, in milliseconds.
 struct DensificationTimings {
   double project = 0;    ///< cloud -> sparse LiDAR disparities (with the occlusion filter)
-  double match = 0;      ///< LiDAR-SGM (all stages of the core) and the LiDAR-only crop
+  double match = 0;      ///< LiDAR-SGM (all stages of the core), the LiDAR-only crop, the output filters
   double reproject = 0;  ///< dense disparity -> depth image and 3D points
   double total() const { return project + match + reproject; }
 };
@@ -94,6 +95,13 @@ class Densifier {
   void setCropToScan(bool crop) { cropToScan_ = crop; }
   bool cropToScan() const { return cropToScan_; }
 
+  /// The sky and outlier filters between matching and reprojection (output_filters.hpp; both on
+  /// by default, in the modes with LiDAR): what they remove is missing from disparity(), depth()
+  /// and the cloud alike.
+  void setOutputFilters(const OutputFilterOptions& o) { outputFilters_ = o; }
+  const OutputFilterOptions& outputFilters() const { return outputFilters_; }
+  OutputFilterOptions& outputFilters() { return outputFilters_; }
+
   /// Whether run() also fills depth() and the dense cloud (default true). Off, a run stops at
   /// the disparity (what the disparity evaluation and the matcher benchmark need).
   void setComputeCloud(bool compute) { computeCloud_ = compute; }
@@ -130,6 +138,8 @@ class Densifier {
   /// The calibration the last run used (its size completed from the images).
   const geometry::StereoCalibration& usedCalibration() const { return used_; }
   const DensificationTimings& timings() const { return timings_; }
+  /// The pixels the output filters removed in the last run.
+  const OutputFilterStats& filterStats() const { return filterStats_; }
   MatchMode lastMode() const { return lastMode_; }
   /// The backend that matched (Auto resolved); Auto before the first run.
   Backend usedBackend() const;
@@ -171,6 +181,8 @@ class Densifier {
   geometry::DenseCloud cloud_;
   geometry::ProjectedLidar projected_;
   DensificationTimings timings_;
+  OutputFilterOptions outputFilters_;
+  OutputFilterStats filterStats_;
   MatchMode lastMode_ = MatchMode::LidarOnly;
   bool cropToScan_ = true;
   bool computeCloud_ = true;
