@@ -182,6 +182,22 @@ TEST(SGMDensificationParameters, EverySetterReachesTheDensifiersOwnField) {
   EXPECT_TRUE(sgm.getCropToScan());
   sgm.setCropToScan(false);
   EXPECT_FALSE(sgm.getCropToScan());
+
+  // The output filters: both on by default, each switch touches only its own filter.
+  EXPECT_TRUE(sgm.getSkyFilter());
+  EXPECT_TRUE(sgm.getOutlierFilter());
+  sgm.setSkyFilter(false);
+  EXPECT_FALSE(sgm.getSkyFilter());
+  EXPECT_TRUE(sgm.getOutlierFilter());
+  sgm.setOutlierFilter(false);
+  EXPECT_FALSE(sgm.getOutlierFilter());
+  OutputFilterOptions filters;
+  filters.outliers.minNeighbours = 7;
+  filters.sky.textureThreshold = 2.5;
+  sgm.setOutputFilters(filters);
+  EXPECT_TRUE(sgm.getSkyFilter());
+  EXPECT_EQ(sgm.getOutputFilters().outliers.minNeighbours, 7);
+  EXPECT_EQ(sgm.getOutputFilters().sky.textureThreshold, 2.5);
 }
 
 TEST(SGMDensificationParameters, TheFrameRunsWithWhatTheSettersSaid) {

@@ -1,6 +1,6 @@
 #pragma once
-/// @file sky_mask.hpp  Sky removal without ground truth, on the image grid: the pixels above the
-/// scan whose disparity nothing supports.
+/// @file sky_mask.hpp  Sky removal without ground truth, on the image grid: the bright, blank
+/// region above the scan's top return that reaches the top of the image.
 
 #include <cstddef>
 #include <cstdint>
