@@ -12,6 +12,7 @@
 #include <pcl/console/print.h>
 
 #include "common/arguments.hpp"
+#include "common/filter_options.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
@@ -60,6 +61,7 @@ void printHelp(const char* program) {
       "                           +-%d rows)\n"
       "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
       "                           cleared, nothing was measured there)\n"
+      "%s"
       "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
       "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
       "                           0 = none or beyond -max_depth)\n"
@@ -82,8 +84,8 @@ void printHelp(const char* program) {
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
       projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
-      projection.occlusion.halfHeight, preview.width, preview.height, preview.cameraHeight, preview.cameraBehind,
-      preview.pitchDeg, preview.groundBelowCamera);
+      projection.occlusion.halfHeight, lidar_sgm::apps::filterOptionsHelp().c_str(), preview.width, preview.height,
+      preview.cameraHeight, preview.cameraBehind, preview.pitchDeg, preview.groundBelowCamera);
 }
 
 /// "1242x375" -> (1242, 375); `option` names the option in errors.
@@ -196,6 +198,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   sgm.setKeepOrganized(args.has("keep_organized"));
   sgm.setCropToScan(!args.has("no_crop_to_scan"));
   sgm.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
+  sgm.setOutputFilters(lidar_sgm::apps::outputFiltersFrom(args));
   const OutputOptions out = outputOptionsFrom(args);
   sgm.setOutputFrame(out.frame);
   sgm.setMaxDepth(out.maxDepth);
@@ -233,11 +236,13 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   const auto& used = sgm.getDisparityImage();
   const lidar_sgm::geometry::DisparityRange& range = sgm.getUsedDisparityRange();  // what was matched
   std::printf("Projecting [done, %.0f ms : %s]\n", timings.project, stats.describe().c_str());
-  std::printf("Matching (%s, alpha %g%s) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity]\n",
+  std::printf("Matching (%s, alpha %g%s) [done, %.0f ms : %dx%d, %.1f %% of pixels have a disparity; filters "
+              "removed %zu sky, %zu outlier pixels]\n",
               lidar_sgm::toString(sgm.getLastMode()).c_str(),
               sgm.getLastMode() == lidar_sgm::MatchMode::Fused ? params.alpha : 1.0,
               params.scale == 1.0f ? "" : ", matched at scale 0.5", timings.match, used.width(),
-              used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()));
+              used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()),
+              sgm.getFilterStats().sky, sgm.getFilterStats().outliers);
   std::printf("disparity range: %s\n", sgm.getUsedDisparityRange().describe().c_str());
   std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
               dense.width, dense.height, frame.c_str());
@@ -295,11 +300,11 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
 int run(int argc, char** argv) {
   using lidar_sgm::apps::joined;
   const Arguments args(argc, argv,
-                       joined(lidar_sgm::apps::sgmValueOptions(),
+                       joined(joined(lidar_sgm::apps::sgmValueOptions(), lidar_sgm::apps::filterValueOptions()),
                               {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
                                "disparity", "depth", "color", "confidence", "preview", "preview_color",
                                "preview_size", "preview_height", "preview_behind", "preview_pitch", "preview_ground"}),
-                       joined(lidar_sgm::apps::sgmFlagOptions(),
+                       joined(joined(lidar_sgm::apps::sgmFlagOptions(), lidar_sgm::apps::filterFlagOptions()),
                               {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
@@ -340,6 +345,7 @@ int run(int argc, char** argv) {
     }
   }
   lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
+  lidar_sgm::apps::outputFiltersFrom(args);
   lidar_sgm::apps::backendFrom(args);
   lidar_sgm::apps::fixedDisparityRange(args);
   outputOptionsFrom(args);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/arguments.hpp"
+#include "common/filter_options.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
@@ -40,13 +41,14 @@ void printHelp(const char* program) {
       "%s"
       "  -no_crop_to_scan         LiDAR-only: keep pixels above the scan's top / below its bottom beam (default:\n"
       "                           cleared, nothing was measured there; as lidar_sgm_densify)\n"
+      "%s"
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -confidence OUT_CONF.png also write the confidence (8-bit gray: 255 x the probability that the\n"
       "                           disparity is right, 0 = none)\n"
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
-      program, lidar_sgm::apps::sgmOptionsHelp().c_str());
+      program, lidar_sgm::apps::sgmOptionsHelp().c_str(), lidar_sgm::apps::filterOptionsHelp().c_str());
 }
 
 void requirePngOutput(const std::string& path, const std::vector<std::string>& inputs) {
@@ -54,8 +56,10 @@ void requirePngOutput(const std::string& path, const std::vector<std::string>& i
 }
 
 int run(int argc, char** argv) {
-  const Arguments args(argc, argv, joined(sgmValueOptions(), {"lidar", "lidar_depth", "fb", "color", "confidence"}),
-                       joined(sgmFlagOptions(), {"no_crop_to_scan"}));
+  const Arguments args(argc, argv,
+                       joined(joined(sgmValueOptions(), lidar_sgm::apps::filterValueOptions()),
+                              {"lidar", "lidar_depth", "fb", "color", "confidence"}),
+                       joined(joined(sgmFlagOptions(), lidar_sgm::apps::filterFlagOptions()), {"no_crop_to_scan"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_disparity", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
   if (files.size() != 2 && files.size() != 3) {
@@ -98,6 +102,7 @@ int run(int argc, char** argv) {
     }
   }
   const lidar_sgm::Parameters params = parametersFrom(args);
+  const lidar_sgm::OutputFilterOptions outputFilters = lidar_sgm::apps::outputFiltersFrom(args);
   const lidar_sgm::Backend backend = lidar_sgm::apps::backendFrom(args);
   const bool fixedRange = lidar_sgm::apps::fixedDisparityRange(args);
 
@@ -135,6 +140,7 @@ int run(int argc, char** argv) {
   densifier.setComputeCloud(false);
   densifier.setCropToScan(!args.has("no_crop_to_scan"));
   densifier.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
+  densifier.setOutputFilters(outputFilters);
   if (stereo) densifier.setStereoPair(lidar_sgm::io::grayView(left), lidar_sgm::io::grayView(right));
   Timer sgmTimer;
   const bool lidarOnly = !stereo;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/arguments.hpp"
+#include "common/filter_options.hpp"
 #include "common/help_version.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
@@ -56,7 +57,8 @@ void printHelp(const char* program) {
       "  -num_disparities N the fixed range [0, N) on every frame (alone: implies -disparity_range fixed)\n"
       "                     (default: the frame's: 128, or its GT's max + 8 px rounded up to 16 where more)\n"
       "  and every other SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the\n"
-      "  LiDAR-SGM methods\n"
+      "  LiDAR-SGM methods, and its output-filter options (-no_sky_filter, -no_outlier_filter, -sky_texture T,\n"
+      "  -outlier_min_neighbours N) for them too\n"
       "  -h, --help         this help\n"
       "  --version          the tool's name and version\n"
       "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
@@ -136,9 +138,9 @@ void printPlan(const GroupSelection& selection, const std::string& out, const Gr
 int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
-      apps::joined(apps::sgmValueOptions(),
+      apps::joined(apps::joined(apps::sgmValueOptions(), apps::filterValueOptions()),
                    {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
-      apps::joined(apps::sgmFlagOptions(), {"no_pictures", "fit_confidence"}));
+      apps::joined(apps::joined(apps::sgmFlagOptions(), apps::filterFlagOptions()), {"no_pictures", "fit_confidence"}));
   if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
     throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
@@ -158,6 +160,7 @@ int run(int argc, char** argv) {
   runOptions.threads = threads;
   runOptions.base = base;
   runOptions.backend = backend;
+  runOptions.filters = apps::outputFiltersFrom(args);
   runOptions.range.mode = apps::fixedDisparityRange(args) ? DisparityRangeMode::Fixed : DisparityRangeMode::FromLidar;
   // -num_disparities: that fixed range on every frame (e.g. the paper's 128); else the frame's.
   if (args.has("num_disparities")) runOptions.range.numDisparities = base.numDisparities;

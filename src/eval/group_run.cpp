@@ -46,13 +46,13 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
   run.result.dataset = frame.dataset;
   run.result.frame = frame.name;
   for (const Method& m : methods) {
-    MethodOutput out = runMethod(m, frame, base, options.backend, options.range);
+    MethodOutput out = runMethod(m, frame, base, options.backend, options.range, options.filters);
     run.result.methods.push_back(score(m, frame, out));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
-    MethodOutput out = runMethod(fused, frame, base, options.backend, options.range);
+    MethodOutput out = runMethod(fused, frame, base, options.backend, options.range, options.filters);
     run.sweep.push_back(score(fused, frame, out));
     if (std::abs(alpha - kPaperAlpha) < 1e-9) {
       run.fusedRange = out.range.describe();

@@ -71,7 +71,7 @@ namespace {
 /// A LiDAR-SGM method as the tools run it: the Densifier on the frame's projected scan, its mode
 /// following the inputs it is given (and the LiDAR-only crop on, its default).
 void runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params, Backend backend,
-                  DisparityRangeMode rangeMode, MethodOutput& out) {
+                  DisparityRangeMode rangeMode, const OutputFilterOptions& filters, MethodOutput& out) {
   const bool images = method.kind != MethodKind::LidarSgm;
   const bool lidar = method.kind == MethodKind::LidarSgm || method.kind == MethodKind::FusedSgm ||
                      method.kind == MethodKind::ThreeCamerasLidar;
@@ -79,6 +79,7 @@ void runDensifier(const Method& method, const EvalFrame& frame, const Parameters
   densifier.setParameters(params);
   densifier.setBackend(backend);
   densifier.setDisparityRangeMode(rangeMode);
+  densifier.setOutputFilters(filters);
   densifier.setComputeCloud(false);  // the protocols score the disparity
   if (images) densifier.setStereoPair(io::grayView(frame.left), io::grayView(frame.right));
   if (method.needsThirdCamera()) densifier.setUpCamera(io::grayView(frame.up), frame.upBaselineRatio);
@@ -92,7 +93,7 @@ void runDensifier(const Method& method, const EvalFrame& frame, const Parameters
 }  // namespace
 
 MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend,
-                       const RangeChoice& range) {
+                       const RangeChoice& range, const OutputFilterOptions& filters) {
   if (method.needsThirdCamera() && frame.up.empty()) {
     throw std::invalid_argument(displayName(method) + " needs a third camera; frame " + frame.name + " has none");
   }
@@ -117,7 +118,7 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
       // The kinds without a LiDAR weight of their own have it by definition (MethodKind).
       params.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
                                         : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
-      runDensifier(method, frame, params, backend, range.mode, out);
+      runDensifier(method, frame, params, backend, range.mode, filters, out);
       break;
     }
   }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "lidar_sgm/geometry/scan_extent.hpp"
+#include "output_filters_step.hpp"
 
 namespace lidar_sgm {
 
@@ -159,6 +160,8 @@ void Densifier::prepareMatcher(const std::vector<LidarSample>& samples) {
 }
 
 void Densifier::match(const LidarPoints* lidar) {
+  validate(outputFilters_.sky);
+  validate(outputFilters_.outliers);
   const auto start = std::chrono::steady_clock::now();
   if (minConfidence_ > 0.0 && !params_.confidence) {
     throw std::invalid_argument("a minimum confidence of " + std::to_string(minConfidence_) +
@@ -194,6 +197,8 @@ void Densifier::match(const LidarPoints* lidar) {
     // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
     geometry::cropToScanRows(disparity_.view(), projected_.samples, params_.lidarCoverageRows, 2);
   }
+  filterStats_ = useLidar ? applyOutputFilters(disparity_.view(), projected_.samples, left, outputFilters_)
+                          : OutputFilterStats{};
   keepConfidenceOfValidPixels();
   dropUnconfidentPixels();
   timings_.match = millisecondsSince(start);

@@ -129,6 +129,22 @@ TEST_P(ToolOptions, WrongPositionalsExitOne) {
   EXPECT_NE(r.output.find(GetParam().wrongPositionalsMessage), std::string::npos) << r.output;
 }
 
+// The tools that run the Densifier take its output-filter options, list them in -h and refuse an
+// out-of-range value naming it (before reading any file).
+TEST_P(ToolOptions, OutputFilterOptionsAreListedAndChecked) {
+  const std::string name = GetParam().name;
+  if (name != "lidar_sgm_disparity" && name != "lidar_sgm_densify") GTEST_SKIP() << name << " runs no Densifier";
+  const RunResult help = run(GetParam().path, "-h");
+  for (const char* option : {"-no_sky_filter", "-sky_texture", "-no_outlier_filter", "-outlier_min_neighbours"}) {
+    EXPECT_NE(help.output.find(option), std::string::npos) << option;
+  }
+  const std::string line = name == "lidar_sgm_densify" ? "in.bin out.pcd -calib c.txt -outlier_min_neighbours 30"
+                                                       : "l.png r.png o.png -outlier_min_neighbours 30";
+  const RunResult r = run(GetParam().path, line);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("minNeighbours must be in [0, 24]"), std::string::npos) << r.output;
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryTool, ToolOptions, ::testing::ValuesIn(builtTools()),
                          [](const ::testing::TestParamInfo<Tool>& tool) { return std::string(tool.param.name); });
 

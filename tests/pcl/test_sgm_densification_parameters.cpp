@@ -196,6 +196,22 @@ TEST(SGMDensificationParameters, EverySetterReachesTheDensifiersOwnField) {
   sgm.setDisparityRangeRule(rule);
   EXPECT_EQ(sgm.getDisparityRangeRule().maxNumDisparities, 192);
   expectEqual(sgm.getParameters(), p);
+
+  // The output filters: both on by default, each switch touches only its own filter.
+  EXPECT_TRUE(sgm.getSkyFilter());
+  EXPECT_TRUE(sgm.getOutlierFilter());
+  sgm.setSkyFilter(false);
+  EXPECT_FALSE(sgm.getSkyFilter());
+  EXPECT_TRUE(sgm.getOutlierFilter());
+  sgm.setOutlierFilter(false);
+  EXPECT_FALSE(sgm.getOutlierFilter());
+  OutputFilterOptions filters;
+  filters.outliers.minNeighbours = 7;
+  filters.sky.textureThreshold = 2.5;
+  sgm.setOutputFilters(filters);
+  EXPECT_TRUE(sgm.getSkyFilter());
+  EXPECT_EQ(sgm.getOutputFilters().outliers.minNeighbours, 7);
+  EXPECT_EQ(sgm.getOutputFilters().sky.textureThreshold, 2.5);
 }
 
 TEST(SGMDensificationParameters, TheFrameRunsWithWhatTheSettersSaid) {

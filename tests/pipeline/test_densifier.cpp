@@ -463,3 +463,70 @@ TEST(Densifier, TheRangeFromTheLidarIsTheSameOnEveryBackend) {
 
 }  // namespace
 }  // namespace lidar_sgm
+
+namespace lidar_sgm {
+namespace {
+
+// The output filters run between matching and reprojection: what they remove is missing from
+// the disparity and the cloud alike, and they are the only difference to a run without them.
+TEST(Densifier, OutputFiltersKeepDisparityAndCloudInAgreement) {
+  Scene s;
+  // A bright blank sky over rows 0..7 of both images (the scan's top beam is row 12).
+  for (int y = 0; y < 8; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      s.stereo.left(x, y) = 230;
+      s.stereo.right(x, y) = 230;
+    }
+  }
+  Densifier filtered;
+  filtered.setCalibration(s.calibration);
+  filtered.setParameters(smallParameters());
+  filtered.setStereoPair(s.stereo.left.view(), s.stereo.right.view());
+  const geometry::DenseCloud& cloud = filtered.run(s.scan);
+  EXPECT_GT(filtered.filterStats().sky, 0u);
+
+  Densifier unfiltered;
+  unfiltered.setCalibration(s.calibration);
+  unfiltered.setParameters(smallParameters());
+  unfiltered.setStereoPair(s.stereo.left.view(), s.stereo.right.view());
+  unfiltered.outputFilters().sky.enabled = false;
+  unfiltered.outputFilters().outliers.enabled = false;
+  unfiltered.run(s.scan);
+  EXPECT_EQ(unfiltered.filterStats().sky + unfiltered.filterStats().outliers, 0u);
+
+  // Filtering only removes: every pixel either keeps the unfiltered disparity or lost it, and the
+  // number lost is what the filters report.
+  long lost = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::int16_t d = filtered.disparity()(x, y);
+      if (d == kInvalidDisparity) {
+        lost += unfiltered.disparity()(x, y) != kInvalidDisparity ? 1 : 0;
+      } else {
+        EXPECT_EQ(d, unfiltered.disparity()(x, y)) << x << "," << y;
+      }
+    }
+  }
+  EXPECT_EQ(static_cast<std::size_t>(lost), filtered.filterStats().sky + filtered.filterStats().outliers);
+  // The cloud has one point per pixel with a depth, and those all have a remaining disparity
+  // (a disparity <= 0 or beyond 80 m has no depth).
+  long withDepth = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      if (filtered.depth()(x, y) <= 0.0f) continue;
+      ++withDepth;
+      EXPECT_NE(filtered.disparity()(x, y), kInvalidDisparity) << x << "," << y;
+    }
+  }
+  ASSERT_EQ(static_cast<long>(cloud.size()), withDepth);
+  EXPECT_GT(withDepth, validCount(filtered.disparity()) * 9 / 10);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const geometry::PixelIndex p = cloud.pixels[i];
+    EXPECT_NE(filtered.disparity()(p.x, p.y), kInvalidDisparity) << p.x << "," << p.y;
+    EXPECT_GT(filtered.depth()(p.x, p.y), 0.0f);
+  }
+  for (int x = 0; x < kWidth; ++x) EXPECT_EQ(filtered.disparity()(x, 0), kInvalidDisparity) << x;  // the sky
+}
+
+}  // namespace
+}  // namespace lidar_sgm

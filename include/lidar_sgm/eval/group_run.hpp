@@ -34,6 +34,7 @@ struct GroupRunOptions {
   /// The LiDAR-SGM methods' search range: from each frame's LiDAR (the tools' default) or fixed:
   /// the frame's numDisparities (the protocol's, from its GT: EVALUATION.md) or a given one.
   RangeChoice range;
+  OutputFilterOptions filters;  ///< the Densifier's sky and outlier filters for the LiDAR-SGM methods
 };
 
 /// Runs every method of `group` and the fused method at every alpha on each frame, in parallel

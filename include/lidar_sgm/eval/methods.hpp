@@ -11,6 +11,7 @@
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/core/parameters.hpp"
+#include "lidar_sgm/pipeline/output_filters.hpp"
 #include "lidar_sgm/eval/eval_frame.hpp"
 #include "lidar_sgm/geometry/disparity_range.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
@@ -78,9 +79,11 @@ struct RangeChoice {
 /// `backend`, alpha the method's and the search range by `range` (the fixed one rounded up to a
 /// multiple of 32 at scale 0.5, which needs one). The baselines ignore `base` and `range` (OpenCV
 /// SGBM searches the frame's numDisparities). Throws std::invalid_argument when the frame lacks
-/// what the method needs.
+/// what the method needs. `filters`: the Densifier's output filters (its defaults, as the tools
+/// ship them).
 MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base = {},
-                       Backend backend = Backend::Auto, const RangeChoice& range = {});
+                       Backend backend = Backend::Auto, const RangeChoice& range = {},
+                       const OutputFilterOptions& filters = {});
 
 /// The search range of a frame whose protocol chose `frameNumDisparities`, at `scale`: the
 /// same at scale 1; at 0.5 rounded up to a multiple of 32 (the half-scale search range must be

@@ -213,6 +213,15 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   void setMinConfidence(double minConfidence) { densifier_.setMinConfidence(minConfidence); }
   double getMinConfidence() const { return densifier_.minConfidence(); }
 
+  /// Sky removal and the isolated/flying-point filter between matching and the cloud (both on by
+  /// default, in the modes with LiDAR; pipeline/output_filters.hpp). Options checked in filter().
+  void setSkyFilter(bool enabled) { densifier_.outputFilters().sky.enabled = enabled; }
+  bool getSkyFilter() const { return densifier_.outputFilters().sky.enabled; }
+  void setOutlierFilter(bool enabled) { densifier_.outputFilters().outliers.enabled = enabled; }
+  bool getOutlierFilter() const { return densifier_.outputFilters().outliers.enabled; }
+  void setOutputFilters(const OutputFilterOptions& options) { densifier_.setOutputFilters(options); }
+  const OutputFilterOptions& getOutputFilters() const { return densifier_.outputFilters(); }
+
   // ---- the output cloud: geometry::ReprojectionOptions; checked in filter() -----------------
 
   void setKeepOrganized(bool keep) { densifier_.reprojectionOptions().keepOrganized = keep; }
@@ -249,6 +258,8 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// a failed one; sourceIndex[i] is the index of samples[i]'s point in the input cloud.
   const geometry::ProjectedLidar& getProjectedLidar() const { return projected_; }
   const DensificationTimings& getTimings() const { return densifier_.timings(); }
+  /// The pixels the sky and outlier filters removed in the last run.
+  const OutputFilterStats& getFilterStats() const { return densifier_.filterStats(); }
   MatchMode getLastMode() const { return densifier_.lastMode(); }
   /// The search range the last frame was matched with ("[0, 176) px from the LiDAR ...").
   const geometry::DisparityRange& getUsedDisparityRange() const { return densifier_.usedDisparityRange(); }

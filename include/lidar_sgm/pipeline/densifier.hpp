@@ -17,13 +17,14 @@
 #include "lidar_sgm/geometry/disparity_range.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/output_filters.hpp"
 
 namespace lidar_sgm {
 
 /// Wall-clock time of the steps of the last run, in milliseconds.
 struct DensificationTimings {
   double project = 0;    ///< cloud -> sparse LiDAR disparities (with the occlusion filter)
-  double match = 0;      ///< LiDAR-SGM (all stages of the core) and the LiDAR-only crop
+  double match = 0;      ///< LiDAR-SGM (all stages of the core), the LiDAR-only crop, the output filters
   double reproject = 0;  ///< dense disparity -> depth image and 3D points
   double total() const { return project + match + reproject; }
 };
@@ -119,6 +120,12 @@ class Densifier {
   /// Throws std::invalid_argument outside [0, 1].
   void setMinConfidence(double minConfidence);
   double minConfidence() const { return minConfidence_; }
+  /// The sky and outlier filters between matching and reprojection (output_filters.hpp; both on
+  /// by default, in the modes with LiDAR): what they remove is missing from disparity(), depth()
+  /// and the cloud alike.
+  void setOutputFilters(const OutputFilterOptions& o) { outputFilters_ = o; }
+  const OutputFilterOptions& outputFilters() const { return outputFilters_; }
+  OutputFilterOptions& outputFilters() { return outputFilters_; }
 
   /// Whether run() also fills depth() and the dense cloud (default true). Off, a run stops at
   /// the disparity (what the disparity evaluation and the matcher benchmark need).
@@ -165,6 +172,8 @@ class Densifier {
   /// disparity over [minDisparity, minDisparity + numDisparities)).
   const Parameters& usedParameters() const { return usedParams_; }
   const DensificationTimings& timings() const { return timings_; }
+  /// The pixels the output filters removed in the last run.
+  const OutputFilterStats& filterStats() const { return filterStats_; }
   MatchMode lastMode() const { return lastMode_; }
   /// The backend that matched (Auto resolved); Auto before the first run.
   Backend usedBackend() const;
@@ -213,6 +222,8 @@ class Densifier {
   geometry::DenseCloud cloud_;
   geometry::ProjectedLidar projected_;
   DensificationTimings timings_;
+  OutputFilterOptions outputFilters_;
+  OutputFilterStats filterStats_;
   MatchMode lastMode_ = MatchMode::LidarOnly;
   bool cropToScan_ = true;
   double minConfidence_ = kDefaultMinConfidence;
