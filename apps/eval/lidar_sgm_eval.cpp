@@ -16,6 +16,7 @@
 #include "common/tool_main.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
 #include "lidar_sgm/eval/confidence_fit.hpp"
+#include "lidar_sgm/eval/confidence_report.hpp"
 #include "lidar_sgm/eval/group_run.hpp"
 #include "lidar_sgm/eval/groups.hpp"
 #include "lidar_sgm/eval/protocols.hpp"
@@ -193,10 +194,15 @@ int run(int argc, char** argv) {
     writeAlphaSweepPlot(results.back(), out + "/plots/alpha_sweep_" + slug(g.name) + ".png");
     markdown += "\n## " + g.name + "\n\n" + g.description + ". Plot: `plots/alpha_sweep_" + slug(g.name) +
                 ".png`.\n\n" + markdownTable(results.back());
+    if (writeConfidencePlot(results.back(), out + "/plots/confidence_" + slug(g.name) + ".png")) {
+      markdown += "\n### Confidence\n\nPlot: `plots/confidence_" + slug(g.name) + ".png`.\n\n" +
+                  confidenceMarkdown(results.back());
+    }
     std::printf("%s [done, %.0f ms]\n", g.name.c_str(), timer.elapsedMs());
   }
   writeTextAtomically(out + "/results.md", markdown);
   nlohmann::json json = toJson(results);
+  for (std::size_t i = 0; i < results.size(); ++i) json["protocols"][i]["confidence"] = confidenceJson(results[i]);
   // How the LiDAR-SGM methods ran, so that runs at different scales are never mixed up.
   json["settings"] = {{"backend", toString(resolve(backend))}, {"scale", base.scale}, {"threads", threads}};
   writeTextAtomically(out + "/results.json", json.dump(2));

@@ -26,12 +26,18 @@ struct FrameRun {
 };
 
 /// Every metric of one method's output on one frame.
-MethodResult score(const Method& method, const EvalFrame& f, const Image<std::int16_t>& d, double milliseconds) {
+/// With `confidence` (not empty), also its curves: from the same disparity, without a new run.
+MethodResult score(const Method& method, const EvalFrame& f, const Image<std::int16_t>& d, double milliseconds,
+                   const Image<std::uint8_t>& confidence = {}) {
   MethodResult result{method, evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view()), milliseconds};
   CloudScoring scoring;
   scoring.denseGroundTruth = f.denseGroundTruth;  // P3: a point on the sky is wrong
   result.cloud = evaluateCloud(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
   result.depth = evaluateDepth(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
+  if (!confidence.empty()) {
+    result.confidence = confidenceCurves(d.view(), confidence.view(), f.groundTruth.view(), f.exclude.view(),
+                                         f.focalBaseline, scoring);
+  }
   return result;
 }
 
@@ -42,15 +48,19 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
   run.result.frame = frame.name;
   for (const Method& m : methods) {
     MethodOutput out = runMethod(m, frame, base, options.backend);
-    run.result.methods.push_back(score(m, frame, out.disparity, out.milliseconds));
+    run.result.methods.push_back(score(m, frame, out.disparity, out.milliseconds, out.confidence));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
     MethodOutput out = runMethod(fused, frame, base, options.backend);
-    run.sweep.push_back(score(fused, frame, out.disparity, out.milliseconds));
-    if (std::abs(alpha - kPaperAlpha) < 1e-9) {
+    const bool paperAlpha = std::abs(alpha - kPaperAlpha) < 1e-9;
+    // Only the table's entry is judged: the curves at every alpha would cost a second sweep.
+    run.sweep.push_back(score(fused, frame, out.disparity, out.milliseconds,
+                              paperAlpha ? out.confidence : Image<std::uint8_t>()));
+    if (paperAlpha) {
       run.result.methods.push_back(run.sweep.back());
+      run.sweep.back().confidence = {};  // the sweep's best-alpha entry has none (MethodResult)
       run.disparities.emplace_back(fused, std::move(out.disparity));
     }
   }
