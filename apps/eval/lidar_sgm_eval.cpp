@@ -17,6 +17,7 @@
 #include "common/tool_main.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
 #include "lidar_sgm/eval/confidence_fit.hpp"
+#include "lidar_sgm/eval/confidence_report.hpp"
 #include "lidar_sgm/eval/group_run.hpp"
 #include "lidar_sgm/eval/groups.hpp"
 #include "lidar_sgm/eval/protocols.hpp"
@@ -161,6 +162,7 @@ int run(int argc, char** argv) {
   runOptions.base = base;
   runOptions.backend = backend;
   runOptions.filters = apps::outputFiltersFrom(args);
+  runOptions.minConfidence = apps::minConfidenceFrom(args);
   runOptions.range.mode = apps::fixedDisparityRange(args) ? DisparityRangeMode::Fixed : DisparityRangeMode::FromLidar;
   // -num_disparities: that fixed range on every frame (e.g. the paper's 128); else the frame's.
   if (args.has("num_disparities")) runOptions.range.numDisparities = base.numDisparities;
@@ -218,17 +220,25 @@ int run(int argc, char** argv) {
     writeAlphaSweepPlot(results.back(), out + "/plots/alpha_sweep_" + slug(g.name) + ".png");
     markdown += "\n## " + g.name + "\n\n" + g.description + ". Plot: `plots/alpha_sweep_" + slug(g.name) +
                 ".png`.\n\n" + markdownTable(results.back());
+    if (writeConfidencePlot(results.back(), out + "/plots/confidence_" + slug(g.name) + ".png")) {
+      markdown += "\n### Confidence\n\nPlot: `plots/confidence_" + slug(g.name) + ".png`.\n\n" +
+                  confidenceMarkdown(results.back());
+    }
     std::printf("%s [done, %.0f ms]\n", g.name.c_str(), timer.elapsedMs());
   }
   writeTextAtomically(out + "/results.md", markdown);
   nlohmann::json json = toJson(results);
+  for (std::size_t i = 0; i < results.size(); ++i) json["protocols"][i]["confidence"] = confidenceJson(results[i]);
   // How the LiDAR-SGM methods ran, so that runs at different scales are never mixed up.
   json["settings"] = {{"backend", toString(resolve(backend))},
                       {"scale", base.scale},
                       {"alpha_mode", toString(base.alphaMode)},
                       {"threads", threads},
                       {"disparity_range", runOptions.range.mode == DisparityRangeMode::FromLidar ? "lidar" : "fixed"},
-                      {"fixed_num_disparities", runOptions.range.numDisparities}};
+                      {"fixed_num_disparities", runOptions.range.numDisparities},
+                      {"min_confidence", runOptions.minConfidence},
+                      {"sky_filter", runOptions.filters.sky.enabled},
+                      {"outlier_filter", runOptions.filters.outliers.enabled}};
   writeTextAtomically(out + "/results.json", json.dump(2));
   std::printf("Results in %s: results.md, results.json, plots/, %s\n", out.c_str(), pictures.empty() ? "" : "pictures/");
   return 0;

@@ -38,8 +38,8 @@ std::size_t bestAlphaIndex(const std::vector<std::pair<double, DisparityMetrics>
 
 void writeAlphaSweepPlot(const ProtocolResult& result, const std::string& path) {
   if (result.sweeps.empty()) throw std::invalid_argument("writeAlphaSweepPlot: " + result.protocol + " has no sweep");
-  PlotSeries correct{"fused: correct [%]", {}, {}, cv::Scalar(180, 119, 31)};
-  PlotSeries rmse{"fused: RMSE [px]", {}, {}, cv::Scalar(14, 127, 255)};
+  PlotSeries correct{"fused: correct [%]", {}, {}, cv::Scalar(180, 119, 31), {}};
+  PlotSeries rmse{"fused: RMSE [px]", {}, {}, cv::Scalar(14, 127, 255), {}};
   for (const auto& [alpha, m] : result.sweeps.front().medians) {
     correct.x.push_back(alpha);
     correct.y.push_back(100.0 * m.correct);

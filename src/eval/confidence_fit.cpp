@@ -209,7 +209,7 @@ std::string runConfidenceFit(const ConfidenceFitOptions& options) {
   plot.xLabel = "confidence / 255";
   plot.yLabel = "share correct";
   plot.fixedY = true;
-  plot.series.push_back({"ideal", {0, 1}, {0, 1}, cv::Scalar(160, 160, 160)});
+  plot.series.push_back({"ideal", {0, 1}, {0, 1}, cv::Scalar(160, 160, 160), {}});
   const cv::Scalar colors[] = {cv::Scalar(200, 80, 0), cv::Scalar(0, 140, 0), cv::Scalar(0, 0, 220)};
   int c = 0;
   for (const ModeRun& run : kModes) {
@@ -235,7 +235,7 @@ std::string runConfidenceFit(const ConfidenceFitOptions& options) {
                     library ? "The library's" : "The fitted", expectedCalibrationError(bins));
       md << ece << reliabilityTable(bins);
       if (library) {
-        PlotSeries series{run.name, {}, {}, colors[c]};
+        PlotSeries series{run.name, {}, {}, colors[c], {}};
         for (const ReliabilityBin& b : bins) {
           if (b.count < 100) continue;
           series.x.push_back(b.meanConfidence);

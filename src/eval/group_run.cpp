@@ -27,7 +27,9 @@ struct FrameRun {
 };
 
 /// Every metric of one method's output on one frame.
-MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput& out) {
+/// With `curves`, also the confidence curves, from the output's disparity before the minimum
+/// confidence dropped any pixel (MethodOutput::allDisparity): without a new run.
+MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput& out, bool curves) {
   const Image<std::int16_t>& d = out.disparity;
   MethodResult result{method, evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view()), out.milliseconds};
   result.minDisparity = out.range.minDisparity;
@@ -37,6 +39,10 @@ MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput&
   scoring.denseGroundTruth = f.denseGroundTruth;  // P3: a point on the sky is wrong
   result.cloud = evaluateCloud(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
   result.depth = evaluateDepth(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
+  if (curves && !out.confidence.empty()) {
+    result.confidence = confidenceCurves(out.allDisparity.view(), out.confidence.view(), f.groundTruth.view(),
+                                         f.exclude.view(), f.focalBaseline, scoring);
+  }
   return result;
 }
 
@@ -46,17 +52,22 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
   run.result.dataset = frame.dataset;
   run.result.frame = frame.name;
   for (const Method& m : methods) {
-    MethodOutput out = runMethod(m, frame, base, options.backend, options.range, options.filters);
-    run.result.methods.push_back(score(m, frame, out));
+    MethodOutput out =
+        runMethod(m, frame, base, options.backend, options.range, options.filters, options.minConfidence);
+    run.result.methods.push_back(score(m, frame, out, true));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
-    MethodOutput out = runMethod(fused, frame, base, options.backend, options.range, options.filters);
-    run.sweep.push_back(score(fused, frame, out));
-    if (std::abs(alpha - kPaperAlpha) < 1e-9) {
+    MethodOutput out =
+        runMethod(fused, frame, base, options.backend, options.range, options.filters, options.minConfidence);
+    const bool paperAlpha = std::abs(alpha - kPaperAlpha) < 1e-9;
+    // Only the table's entry is judged: the curves at every alpha would cost a second sweep.
+    run.sweep.push_back(score(fused, frame, out, paperAlpha));
+    if (paperAlpha) {
       run.fusedRange = out.range.describe();
       run.result.methods.push_back(run.sweep.back());
+      run.sweep.back().confidence = {};  // the sweep's best-alpha entry has none (MethodResult)
       run.disparities.emplace_back(fused, std::move(out.disparity));
     }
   }

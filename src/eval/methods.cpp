@@ -71,7 +71,8 @@ namespace {
 /// A LiDAR-SGM method as the tools run it: the Densifier on the frame's projected scan, its mode
 /// following the inputs it is given (and the LiDAR-only crop on, its default).
 void runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params, Backend backend,
-                  DisparityRangeMode rangeMode, const OutputFilterOptions& filters, MethodOutput& out) {
+                  DisparityRangeMode rangeMode, const OutputFilterOptions& filters, double minConfidence,
+                  MethodOutput& out) {
   const bool images = method.kind != MethodKind::LidarSgm;
   const bool lidar = method.kind == MethodKind::LidarSgm || method.kind == MethodKind::FusedSgm ||
                      method.kind == MethodKind::ThreeCamerasLidar;
@@ -83,9 +84,16 @@ void runDensifier(const Method& method, const EvalFrame& frame, const Parameters
   densifier.setComputeCloud(false);  // the protocols score the disparity
   if (images) densifier.setStereoPair(io::grayView(frame.left), io::grayView(frame.right));
   if (method.needsThirdCamera()) densifier.setUpCamera(io::grayView(frame.up), frame.upBaselineRatio);
+  // Every pixel first (the confidence curves need them), then the Densifier's own last step.
+  densifier.setMinConfidence(0.0);
   densifier.runProjected(lidar ? &frame.lidar : nullptr);
-  out.disparity = densifier.disparity();
+  out.allDisparity = densifier.disparity();
   out.confidence = densifier.confidence();
+  out.disparity = out.allDisparity;
+  if (!out.confidence.empty()) {
+    Image<std::uint8_t> kept = out.confidence;
+    applyMinConfidence(out.disparity.view(), kept.view(), minConfidence);
+  }
   if (densifier.matcher() != nullptr) out.confidenceInputs = densifier.matcher()->confidenceInputs();
   out.range = densifier.usedDisparityRange();
 }
@@ -93,7 +101,7 @@ void runDensifier(const Method& method, const EvalFrame& frame, const Parameters
 }  // namespace
 
 MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend,
-                       const RangeChoice& range, const OutputFilterOptions& filters) {
+                       const RangeChoice& range, const OutputFilterOptions& filters, double minConfidence) {
   if (method.needsThirdCamera() && frame.up.empty()) {
     throw std::invalid_argument(displayName(method) + " needs a third camera; frame " + frame.name + " has none");
   }
@@ -118,7 +126,7 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
       // The kinds without a LiDAR weight of their own have it by definition (MethodKind).
       params.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
                                         : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
-      runDensifier(method, frame, params, backend, range.mode, filters, out);
+      runDensifier(method, frame, params, backend, range.mode, filters, minConfidence, out);
       break;
     }
   }

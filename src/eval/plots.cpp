@@ -210,6 +210,11 @@ void drawSeries(cv::Mat& canvas, const PlotSeries& s, const Mapping& m) {
       cv::circle(area, m.local(s.x[i], s.y[i]), kMarkerRadius, s.color, cv::FILLED, cv::LINE_AA);
     }
   }
+  for (std::size_t i = 0; i < s.labels.size(); ++i) {
+    if (s.labels[i].empty() || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+    const cv::Point p = m.local(s.x[i], s.y[i]) + cv::Point(kMarkerRadius + 2, -kMarkerRadius - 2);
+    cv::putText(area, s.labels[i], p, kFont, kTickScale, s.color, 1, cv::LINE_AA);
+  }
 }
 
 void drawLegend(cv::Mat& canvas, const std::vector<PlotSeries>& series, const cv::Rect& area) {
@@ -260,6 +265,10 @@ cv::Mat linePlot(const PlotSpec& spec) {
     if (s.x.size() != s.y.size()) {
       throw std::invalid_argument("linePlot: series '" + s.name + "' has " + std::to_string(s.x.size()) + " x and " +
                                   std::to_string(s.y.size()) + " y values");
+    }
+    if (!s.labels.empty() && s.labels.size() != s.x.size()) {
+      throw std::invalid_argument("linePlot: series '" + s.name + "' has " + std::to_string(s.labels.size()) +
+                                  " labels for " + std::to_string(s.x.size()) + " points");
     }
   }
   Mapping mapping;

@@ -16,6 +16,8 @@ struct PlotSeries {
   std::string name;
   std::vector<double> x, y;
   cv::Scalar color;  ///< BGR
+  /// Optional: a text beside each point (empty, or as many as x; an empty text draws nothing).
+  std::vector<std::string> labels;
 };
 
 struct PlotSpec {
@@ -34,7 +36,8 @@ std::vector<double> niceTicks(double lo, double hi, int target = 5);
 
 /// Renders `spec` as an 8-bit BGR image of width x height: white background, axes with nice
 /// ticks and labels, grid, lines with markers, legend box top-right. Throws
-/// std::invalid_argument when a series' x and y differ in length or the size is too small.
+/// std::invalid_argument when a series' x and y (or its non-empty labels) differ in length or the size
+/// is too small.
 cv::Mat linePlot(const PlotSpec& spec);
 
 /// Side-by-side images (8-bit gray or BGR; the result is BGR), shorter ones padded with white at

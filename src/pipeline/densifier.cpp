@@ -6,6 +6,7 @@
 #include <string>
 
 #include "lidar_sgm/geometry/scan_extent.hpp"
+#include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "output_filters_step.hpp"
 
 namespace lidar_sgm {
@@ -218,23 +219,13 @@ void Densifier::keepConfidenceOfValidPixels() {
 }
 
 void Densifier::setMinConfidence(double minConfidence) {
-  if (!(minConfidence >= 0.0 && minConfidence <= 1.0)) {
-    throw std::invalid_argument("minConfidence = " + std::to_string(minConfidence) + ": must be in [0, 1]");
-  }
+  confidenceThreshold(minConfidence);  // validates
   minConfidence_ = minConfidence;
 }
 
 void Densifier::dropUnconfidentPixels() {
   if (minConfidence_ <= 0.0 || confidence_.empty()) return;
-  // confidence / 255 >= minConfidence, in integers: confidence >= ceil(255 * minConfidence).
-  const int threshold = static_cast<int>(std::ceil(255.0 * minConfidence_ - 1e-9));
-  for (int y = 0; y < disparity_.height(); ++y) {
-    for (int x = 0; x < disparity_.width(); ++x) {
-      if (confidence_(x, y) >= threshold) continue;
-      disparity_(x, y) = kInvalidDisparity;
-      confidence_(x, y) = 0;
-    }
-  }
+  applyMinConfidence(disparity_.view(), confidence_.view(), minConfidence_);
 }
 
 void Densifier::reprojectResult() {

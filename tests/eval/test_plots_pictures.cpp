@@ -88,8 +88,8 @@ PlotSpec twoSeries() {
   spec.yLabel = "correct";
   spec.width = 500;
   spec.height = 320;
-  spec.series.push_back({"fused", {0.0, 0.25, 0.5, 0.75, 1.0}, {0.80, 0.90, 0.95, 0.93, 0.70}, cv::Scalar(0, 0, 255)});
-  spec.series.push_back({"stereo", {0.0, 0.5, 1.0}, {0.60, 0.62, 0.61}, cv::Scalar(255, 0, 0)});
+  spec.series.push_back({"fused", {0.0, 0.25, 0.5, 0.75, 1.0}, {0.80, 0.90, 0.95, 0.93, 0.70}, cv::Scalar(0, 0, 255), {}});
+  spec.series.push_back({"stereo", {0.0, 0.5, 1.0}, {0.60, 0.62, 0.61}, cv::Scalar(255, 0, 0), {}});
   return spec;
 }
 
@@ -131,6 +131,18 @@ TEST(LinePlot, FixedRangeAndOddInputDoNotFail) {
 TEST(LinePlot, RejectsMismatchedSeries) {
   PlotSpec spec = twoSeries();
   spec.series[1].y.pop_back();
+  EXPECT_THROW(linePlot(spec), std::invalid_argument);
+}
+
+// Labels are optional, one per point: they add text (anti-aliased, so counted as changed pixels).
+TEST(LinePlot, DrawsPointLabelsAndRejectsAMismatchedCount) {
+  PlotSpec spec = twoSeries();
+  const cv::Mat plain = linePlot(spec);
+  spec.series[1].labels = {"0.0", "", "0.9"};
+  cv::Mat changed;
+  cv::absdiff(linePlot(spec), plain, changed);
+  EXPECT_GT(cv::countNonZero(changed.reshape(1)), 20);
+  spec.series[1].labels.pop_back();
   EXPECT_THROW(linePlot(spec), std::invalid_argument);
 }
 

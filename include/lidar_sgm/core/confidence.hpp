@@ -43,8 +43,10 @@ constexpr int kLeftRightDifferenceCap = 8;
 constexpr int kDisparityRangeCap = 16;
 
 /// The confidence below which the pipeline (Densifier, the tools) drops a pixel by default, in
-/// [0, 1]: chosen from the measured precision/completeness curves (docs/RESULTS.md).
-constexpr double kDefaultMinConfidence = 0.0;
+/// [0, 1]: keep a pixel when it is more likely right than wrong. Chosen on the measured
+/// precision/completeness curves (docs/RESULTS.md): the highest threshold that keeps the fused
+/// cloud's completeness >= 93 % on P3 clear 64 beams (0.6 drops it to 92.97 %).
+constexpr double kDefaultMinConfidence = 0.5;
 
 /// The inputs of the last frame, at the size the frame was matched at (half size at scale 0.5).
 struct ConfidenceInputs {

@@ -35,6 +35,7 @@ struct GroupRunOptions {
   /// the frame's numDisparities (the protocol's, from its GT: EVALUATION.md) or a given one.
   RangeChoice range;
   OutputFilterOptions filters;  ///< the Densifier's sky and outlier filters for the LiDAR-SGM methods
+  double minConfidence = kDefaultMinConfidence;  ///< the Densifier's minimum confidence (core/confidence.hpp)
 };
 
 /// Runs every method of `group` and the fused method at every alpha on each frame, in parallel

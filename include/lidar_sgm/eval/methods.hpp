@@ -55,8 +55,11 @@ std::string displayName(const Method& method);
 
 struct MethodOutput {
   Image<std::int16_t> disparity;  ///< x16, kInvalidDisparity where none
-  /// LiDAR-SGM methods: Densifier::confidence() (empty for the baselines, which have none).
+  /// LiDAR-SGM methods: the Densifier's confidence and disparity before the minimum confidence
+  /// dropped any pixel (`disparity` is `allDisparity` with dropBelowConfidence applied, exactly
+  /// the Densifier's own last step); empty for the baselines, which have no confidence.
   Image<std::uint8_t> confidence;
+  Image<std::int16_t> allDisparity;
   /// LiDAR-SGM methods: the inputs of the confidence, at the matched size.
   ConfidenceInputs confidenceInputs;
   double milliseconds = 0;
@@ -79,11 +82,11 @@ struct RangeChoice {
 /// `backend`, alpha the method's and the search range by `range` (the fixed one rounded up to a
 /// multiple of 32 at scale 0.5, which needs one). The baselines ignore `base` and `range` (OpenCV
 /// SGBM searches the frame's numDisparities). Throws std::invalid_argument when the frame lacks
-/// what the method needs. `filters`: the Densifier's output filters (its defaults, as the tools
-/// ship them).
+/// what the method needs. `filters` and `minConfidence`: the Densifier's output filters and
+/// minimum confidence (its defaults, as the tools ship them).
 MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base = {},
                        Backend backend = Backend::Auto, const RangeChoice& range = {},
-                       const OutputFilterOptions& filters = {});
+                       const OutputFilterOptions& filters = {}, double minConfidence = kDefaultMinConfidence);
 
 /// The search range of a frame whose protocol chose `frameNumDisparities`, at `scale`: the
 /// same at scale 1; at 0.5 rounded up to a multiple of 32 (the half-scale search range must be

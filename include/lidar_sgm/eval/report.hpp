@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lidar_sgm/eval/cloud_metrics.hpp"
+#include "lidar_sgm/eval/confidence_curves.hpp"
 #include "lidar_sgm/eval/methods.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 
@@ -30,6 +31,9 @@ struct MethodResult {
   bool rangeFromLidar = false;
   CloudMetrics cloud{};  ///< the same output scored as a cloud
   DepthMetrics depth{};  ///< and as a depth map (KITTI depth completion)
+  /// The method's confidence judged (confidence_curves.hpp); empty where it has none, and for
+  /// the sweep's best alpha (the fused method is judged at the paper's alpha).
+  ConfidenceCurves confidence{};
 };
 
 /// Same method and the same role (sweep best or not): what the medians are grouped by.
