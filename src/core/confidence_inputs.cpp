@@ -6,13 +6,15 @@
 
 namespace lidar_sgm {
 
-void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance) {
+void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance,
+                   ConfidenceScratch& scratch) {
   const int W = support.width;
   const int H = support.height;
   const int cap = kLidarDistanceCap;
   // Separable: the vertical distance per column (two sweeps), then the Chebyshev distance
   // min over |dx| <= cap of max(|dx|, vertical(x + dx)).
-  std::vector<std::uint8_t> vertical(static_cast<std::size_t>(W) * H);
+  std::vector<std::uint8_t>& vertical = scratch.bytes;
+  vertical.resize(static_cast<std::size_t>(W) * H);
   const auto v = [&](int x, int y) -> std::uint8_t& { return vertical[static_cast<std::size_t>(y) * W + x]; };
   for (int x = 0; x < W; ++x) {
     int last = cap;
@@ -42,12 +44,14 @@ namespace {
 
 template <typename T>
 void textureOf(ImageView<const T> image, int shift, int saturation, ImageView<std::uint8_t> texture,
-               ImageView<std::uint8_t> saturated) {
+               ImageView<std::uint8_t> saturated, ConfidenceScratch& scratch) {
   const int W = image.width;
   const int H = image.height;
   // |I(x+1) - I(x-1)| (border pixels repeat), then its 5x5 sum by rows and columns.
-  std::vector<int> gradient(static_cast<std::size_t>(W) * H);
-  std::vector<int> rowSum(static_cast<std::size_t>(W) * H);
+  std::vector<int>& gradient = scratch.a;
+  std::vector<int>& rowSum = scratch.b;
+  gradient.resize(static_cast<std::size_t>(W) * H);
+  rowSum.resize(static_cast<std::size_t>(W) * H);
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
       const int a = image(std::min(x + 1, W - 1), y);
@@ -75,11 +79,11 @@ void textureOf(ImageView<const T> image, int shift, int saturation, ImageView<st
 }  // namespace
 
 void textureAndSaturation(const GrayImageView& image, ImageView<std::uint8_t> texture,
-                          ImageView<std::uint8_t> saturated) {
+                          ImageView<std::uint8_t> saturated, ConfidenceScratch& scratch) {
   if (!image.gray8.empty()) {
-    textureOf(image.gray8, 0, 250, texture, saturated);
+    textureOf(image.gray8, 0, 250, texture, saturated, scratch);
   } else if (!image.gray16.empty()) {
-    textureOf(image.gray16, 8, 250 << 8, texture, saturated);
+    textureOf(image.gray16, 8, 250 << 8, texture, saturated, scratch);
   } else {
     for (int y = 0; y < texture.height; ++y) {
       std::fill(texture.row(y), texture.row(y) + texture.width, std::uint8_t{0});
@@ -88,12 +92,16 @@ void textureAndSaturation(const GrayImageView& image, ImageView<std::uint8_t> te
   }
 }
 
-void disparityRange(ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> range) {
+void disparityRange(ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> range,
+                    ConfidenceScratch& scratch) {
   const int W = disparity.width;
   const int H = disparity.height;
   // Separable: min and max over 5 columns, then over 5 rows; invalid pixels take no part.
   constexpr int kNone = 1 << 20;
-  std::vector<int> rowMin(static_cast<std::size_t>(W) * H), rowMax(static_cast<std::size_t>(W) * H);
+  std::vector<int>& rowMin = scratch.a;
+  std::vector<int>& rowMax = scratch.b;
+  rowMin.resize(static_cast<std::size_t>(W) * H);
+  rowMax.resize(static_cast<std::size_t>(W) * H);
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
       int lo = kNone, hi = -kNone;

@@ -74,7 +74,10 @@ std::unique_ptr<Matcher> Matcher::create(Backend backend, const Parameters& para
                            available + "auto");
 }
 
-Matcher::Matcher(const Parameters& params) : params_(params) { validate(params_); }
+Matcher::Matcher(const Parameters& params)
+    : params_(params), scratch_(std::make_shared<ConfidenceScratch>()) {
+  validate(params_);
+}
 
 void Matcher::setParameters(const Parameters& params) {
   validate(params);
@@ -196,13 +199,14 @@ void Matcher::computeConfidence(const GrayImageView& left, MatchMode mode, Image
     in.leftRightDifference.fill(kNoCounterpartDifference);
   }
   in.lidarDistance.resize(W, H);
-  lidarDistance(static_cast<const Image<std::uint8_t>&>(support_).view(), in.lidarDistance.view());
+  lidarDistance(static_cast<const Image<std::uint8_t>&>(support_).view(), in.lidarDistance.view(), *scratch_);
   in.texture.resize(W, H);
   in.saturated.resize(W, H);
-  textureAndSaturation(mode == MatchMode::LidarOnly ? GrayImageView() : left, in.texture.view(), in.saturated.view());
+  textureAndSaturation(mode == MatchMode::LidarOnly ? GrayImageView() : left, in.texture.view(), in.saturated.view(),
+                       *scratch_);
   confidence_.resize(W, H);
   in.disparityRange.resize(W, H);
-  disparityRange(disparity, in.disparityRange.view());
+  disparityRange(disparity, in.disparityRange.view(), *scratch_);
   combineConfidence(in, mode, params_.paths, disparity, confidence_.view());
   timings_.confidence = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

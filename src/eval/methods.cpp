@@ -8,6 +8,8 @@
 
 #include "baselines.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/pipeline/densifier.hpp"
+#include "lidar_sgm/pipeline/min_confidence.hpp"
 
 namespace lidar_sgm {
 namespace eval {

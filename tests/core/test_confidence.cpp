@@ -14,10 +14,11 @@ namespace lidar_sgm {
 namespace {
 
 TEST(Confidence, LidarDistanceIsTheCappedChebyshevDistanceToSupport) {
+  ConfidenceScratch scratch;
   Image<std::uint8_t> support(40, 30, 0);
   support(10, 5) = 1;
   Image<std::uint8_t> distance(40, 30);
-  lidarDistance(std::as_const(support).view(), distance.view());
+  lidarDistance(std::as_const(support).view(), distance.view(), scratch);
   for (int y = 0; y < 30; ++y) {
     for (int x = 0; x < 40; ++x) {
       const int expected = std::min(std::max(std::abs(x - 10), std::abs(y - 5)), kLidarDistanceCap);
@@ -25,28 +26,29 @@ TEST(Confidence, LidarDistanceIsTheCappedChebyshevDistanceToSupport) {
     }
   }
   support.fill(0);
-  lidarDistance(std::as_const(support).view(), distance.view());
+  lidarDistance(std::as_const(support).view(), distance.view(), scratch);
   EXPECT_EQ(distance(20, 15), kLidarDistanceCap);  // no LiDAR at all
 }
 
 TEST(Confidence, TextureIsTheMeanCentralDifferenceAndSaturationThe250Threshold) {
+  ConfidenceScratch scratch;
   Image<std::uint8_t> flat(20, 10, 251);
   Image<std::uint8_t> texture(20, 10), saturated(20, 10);
-  textureAndSaturation(GrayImageView(std::as_const(flat).view()), texture.view(), saturated.view());
+  textureAndSaturation(GrayImageView(std::as_const(flat).view()), texture.view(), saturated.view(), scratch);
   EXPECT_EQ(texture(10, 5), 0);
   EXPECT_EQ(saturated(10, 5), 1);
   Image<std::uint8_t> ramp(20, 10);
   for (int y = 0; y < 10; ++y) {
     for (int x = 0; x < 20; ++x) ramp(x, y) = static_cast<std::uint8_t>(3 * x);  // |I(x+1) - I(x-1)| = 6
   }
-  textureAndSaturation(GrayImageView(std::as_const(ramp).view()), texture.view(), saturated.view());
+  textureAndSaturation(GrayImageView(std::as_const(ramp).view()), texture.view(), saturated.view(), scratch);
   EXPECT_EQ(texture(10, 5), 6);
   EXPECT_EQ(saturated(10, 5), 0);
   Image<std::uint16_t> ramp16(20, 10);
   for (int y = 0; y < 10; ++y) {
     for (int x = 0; x < 20; ++x) ramp16(x, y) = static_cast<std::uint16_t>(3 * 256 * x);
   }
-  textureAndSaturation(GrayImageView(std::as_const(ramp16).view()), texture.view(), saturated.view());
+  textureAndSaturation(GrayImageView(std::as_const(ramp16).view()), texture.view(), saturated.view(), scratch);
   EXPECT_EQ(texture(10, 5), 6);  // 16-bit images in 8-bit units
 }
 
@@ -63,16 +65,17 @@ TEST(Confidence, LogisticTableIsMonotoneAndClamped) {
 }
 
 TEST(Confidence, DisparityRangeIsTheSpreadOfTheValidNeighbours) {
+  ConfidenceScratch scratch;
   Image<std::int16_t> disparity(9, 9, 10 * kDisparityScale);
   disparity(6, 4) = 14 * kDisparityScale;  // a step of 4 px, 2 columns right of the centre
   disparity(4, 2) = kInvalidDisparity;     // ignored
   Image<std::uint8_t> range(9, 9);
-  disparityRange(std::as_const(disparity).view(), range.view());
+  disparityRange(std::as_const(disparity).view(), range.view(), scratch);
   EXPECT_EQ(range(4, 4), 4);
   EXPECT_EQ(range(1, 4), 0);  // 5 columns left of the step
   EXPECT_EQ(range(4, 2), 0);  // invalid itself
   disparity(0, 0) = 200 * kDisparityScale;
-  disparityRange(std::as_const(disparity).view(), range.view());
+  disparityRange(std::as_const(disparity).view(), range.view(), scratch);
   EXPECT_EQ(range(1, 1), kDisparityRangeCap);
 }
 

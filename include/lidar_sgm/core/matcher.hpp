@@ -11,6 +11,8 @@
 
 namespace lidar_sgm {
 
+struct ConfidenceScratch;
+
 enum class Backend {
   Auto,    ///< the fastest backend built into this library (cuda > cpu > cpu_ref)
   CpuRef,  ///< naive reference loops, single-threaded: the specification
@@ -176,6 +178,7 @@ class Matcher {
 
   Image<std::uint8_t> confidence_;
   Image<std::uint8_t> halfConfidence_;
+  std::shared_ptr<ConfidenceScratch> scratch_;  ///< row buffers of the core's confidence inputs
   MatchMode lastMode_ = MatchMode::StereoOnly;
   bool lastUpCamera_ = false;
   double rescaleMs_ = 0;
