@@ -17,6 +17,7 @@ const std::vector<StageColumn>& stageColumns() {
       {"selectDisparity", &StageTimings::selectDisparity},
       {"leftRightCheck", &StageTimings::leftRightCheck},
       {"medianFilter", &StageTimings::medianFilter},
+      {"confidence", &StageTimings::confidence},
   };
   return columns;
 }

@@ -16,19 +16,26 @@ void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t
   std::vector<std::uint8_t>& vertical = scratch.bytes;
   vertical.resize(static_cast<std::size_t>(W) * H);
   const auto v = [&](int x, int y) -> std::uint8_t& { return vertical[static_cast<std::size_t>(y) * W + x]; };
-  for (int x = 0; x < W; ++x) {
-    int last = cap;
-    for (int y = 0; y < H; ++y) {
-      last = support(x, y) != 0 ? 0 : std::min(last + 1, cap);
-      v(x, y) = static_cast<std::uint8_t>(last);
-    }
-    last = cap;
-    for (int y = H - 1; y >= 0; --y) {
-      last = support(x, y) != 0 ? 0 : std::min(last + 1, cap);
-      v(x, y) = static_cast<std::uint8_t>(std::min<int>(v(x, y), last));
+  // Row by row (memory order), each column's distance carried from the row before.
+  for (int y = 0; y < H; ++y) {
+    const std::uint8_t* s = support.row(y);
+    for (int x = 0; x < W; ++x) {
+      const int above = y == 0 ? cap : v(x, y - 1);
+      v(x, y) = static_cast<std::uint8_t>(s[x] != 0 ? 0 : std::min(above + 1, cap));
     }
   }
+  for (int y = H - 2; y >= 0; --y) {
+    for (int x = 0; x < W; ++x) v(x, y) = std::min<std::uint8_t>(v(x, y), static_cast<std::uint8_t>(std::min(v(x, y + 1) + 1, cap)));
+  }
   for (int y = 0; y < H; ++y) {
+    // A row no support comes within `cap` rows of (above or below the scan, or no LiDAR at all)
+    // is `cap` everywhere: skip the search.
+    bool far = true;
+    for (int x = 0; x < W && far; ++x) far = v(x, y) == cap;
+    if (far) {
+      std::fill(distance.row(y), distance.row(y) + W, static_cast<std::uint8_t>(cap));
+      continue;
+    }
     for (int x = 0; x < W; ++x) {
       int best = v(x, y);
       for (int dx = 1; dx < best; ++dx) {
