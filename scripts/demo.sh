@@ -21,7 +21,8 @@ right="$sample/image_3/000000.png"
 
 echo "== Fused LiDAR-SGM (scan + stereo pair) -> dense colored cloud"
 "$densify" "$scan" "$out/dense_fused.pcd" -calib "$calib" -left "$left" -right "$right" \
-  -disparity "$out/fused.png" -depth "$out/fused_depth.png" -color "$out/fused_color.png"
+  -disparity "$out/fused.png" -depth "$out/fused_depth.png" -color "$out/fused_color.png" \
+  -confidence "$out/fused_confidence.png" -preview "$out/fused_preview.png"
 echo
 echo "== LiDAR-only SGM (scan, colored from the left image) -> dense colored cloud"
 "$densify" "$scan" "$out/dense_lidar.pcd" -calib "$calib" -left "$left" \
@@ -32,9 +33,11 @@ echo "== Stereo-only SGM (no LiDAR), for comparison"
 
 echo
 echo "Results in $out:"
-echo "  dense_fused.pcd dense_lidar.pcd                  dense XYZRGB clouds, LiDAR frame (binary PCD;"
+echo "  dense_fused.pcd dense_lidar.pcd                  dense XYZRGB clouds with a per-point confidence, LiDAR frame (binary PCD;"
 echo "                                                   view with pcl_viewer from Debian's pcl-tools, or CloudCompare)"
 echo "  fused.png lidar.png stereo.png                   KITTI disparity (uint16, disparity*256, 0 = invalid)"
 echo "  fused_color.png lidar_color.png stereo_color.png color pictures of the disparity (invalid = black)"
 echo "  fused_depth.png                                  dense depth, KITTI depth-completion format (uint16, metres*256, 0 = none)"
+echo "  fused_confidence.png                             confidence per pixel (8-bit: 255 x the probability that it is right)"
+echo "  fused_preview.png                                the fused cloud seen from above and behind the rig"
 echo "Ground truth for comparison: $sample/disp_gt/000000.png (same format), $sample/depth_gt/000000.png (depth)"
