@@ -1,9 +1,13 @@
-# Shared settings for every lidar_sgm target: warnings (errors in CI), C++17.
+# Shared settings for every lidar_sgm target: warnings (errors in CI), C++17. CUDA sources get
+# the host compiler's warnings through nvcc, and nvcc's own warnings as errors in CI.
 function(lidar_sgm_target_defaults target)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
+    target_compile_options(${target} PRIVATE
+      $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion>
+      $<$<COMPILE_LANGUAGE:CUDA>:-Xcompiler=-Wall,-Wextra>)
     if(LIDAR_SGM_WARNINGS_AS_ERRORS)
-      target_compile_options(${target} PRIVATE -Werror)
+      target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CXX>:-Werror>
+                                               $<$<COMPILE_LANGUAGE:CUDA>:-Werror=all-warnings -Xcompiler=-Werror>)
     endif()
   endif()
   target_compile_features(${target} PUBLIC cxx_std_17)

@@ -3,6 +3,7 @@
 // it builds (backend_list.cpp.in), so the core never includes a backend's header.
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "lidar_sgm/core/matcher.hpp"
@@ -11,13 +12,16 @@ namespace lidar_sgm {
 namespace detail {
 
 using MatcherFactory = std::unique_ptr<Matcher> (*)(const Parameters&);
+/// "" when the backend can run on this machine, else why not (a GPU backend without a device).
+using AvailabilityProbe = std::string (*)();
 
 struct BackendEntry {
   Backend backend;
   MatcherFactory create;
+  AvailabilityProbe unavailable = nullptr;  ///< null: always runs where it is built
 };
 
-/// Every backend of this build, fastest first: Backend::Auto is the first entry.
+/// Every backend of this build, fastest first: Backend::Auto is the first that can run here.
 const std::vector<BackendEntry>& builtinBackends();
 
 }  // namespace detail

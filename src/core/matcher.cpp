@@ -37,16 +37,34 @@ Backend backendFromString(const std::string& name) {
   throw std::invalid_argument("unknown backend '" + name + "': must be auto, cpu_ref, cpu or cuda");
 }
 
-bool isAvailable(Backend backend) {
-  if (backend == Backend::Auto) return true;
-  for (const detail::BackendEntry& entry : detail::builtinBackends()) {
-    if (entry.backend == backend) return true;
-  }
-  return false;
+namespace {
+
+// "" when `entry` can run on this machine.
+std::string entryUnavailable(const detail::BackendEntry& entry) {
+  return entry.unavailable == nullptr ? std::string() : entry.unavailable();
 }
 
+}  // namespace
+
+std::string unavailableReason(Backend backend) {
+  if (backend == Backend::Auto) return "";
+  for (const detail::BackendEntry& entry : detail::builtinBackends()) {
+    if (entry.backend == backend) return entryUnavailable(entry);
+  }
+  return "not built into this library" +
+         std::string(backend == Backend::Cuda ? " (configure with the CUDA toolkit, LIDAR_SGM_WITH_CUDA=ON)"
+                     : backend == Backend::Cpu ? " (configure with Highway, LIDAR_SGM_WITH_CPU_BACKEND=ON)"
+                                               : "");
+}
+
+bool isAvailable(Backend backend) { return unavailableReason(backend).empty(); }
+
 Backend resolve(Backend backend) {
-  return backend == Backend::Auto ? detail::builtinBackends().front().backend : backend;
+  if (backend != Backend::Auto) return backend;
+  for (const detail::BackendEntry& entry : detail::builtinBackends()) {
+    if (entryUnavailable(entry).empty()) return entry.backend;
+  }
+  return Backend::CpuRef;  // always built, always runs
 }
 
 std::string toString(MatchMode mode) {
@@ -67,7 +85,11 @@ std::unique_ptr<Matcher> Matcher::create(Backend backend, const Parameters& para
   const Backend wanted = resolve(backend);
   std::string available;
   for (const detail::BackendEntry& entry : detail::builtinBackends()) {
-    if (entry.backend == wanted) return entry.create(params);
+    if (entry.backend == wanted) {
+      const std::string why = entryUnavailable(entry);
+      if (!why.empty()) throw std::runtime_error("backend " + toString(wanted) + " cannot run here: " + why);
+      return entry.create(params);
+    }
     available += toString(entry.backend) + ", ";
   }
   throw std::runtime_error("backend " + toString(backend) + " is not built into this library; available: " +

@@ -19,6 +19,9 @@
 #ifdef LIDAR_SGM_TEST_CPU_BACKEND
 #include "backends/cpu/cpu_stages.hpp"
 #endif
+#ifdef LIDAR_SGM_TEST_CUDA_BACKEND
+#include "backends/cuda/cuda_stages.hpp"
+#endif
 
 namespace lidar_sgm {
 namespace {
@@ -97,6 +100,46 @@ bool stagesOf(const std::string& backend, int threads, StageSet& s) {
     return true;
   }
 #endif
+#ifdef LIDAR_SGM_TEST_CUDA_BACKEND
+  if (backend == "cuda") {
+    // The GPU has no thread count: every `threads` runs the same kernels.
+    s.census8 = [](auto image, auto type, auto out) { cuda::censusTransform(image, type, out); };
+    s.census16 = [](auto image, auto type, auto out) { cuda::censusTransform(image, type, out); };
+    s.censusCost = [](auto l, auto r, auto type, int minD, auto& cost) { cuda::censusCost(l, r, type, minD, cost); };
+    s.verticalCensusCost = [](auto l, auto u, auto type, int ratio, int minD, auto& cost) {
+      cuda::verticalCensusCost(l, u, type, ratio, minD, cost);
+    };
+    s.combineCameraCosts = [](const auto& h, const auto& v, auto& c) { cuda::combineCameraCosts(h, v, c); };
+    s.lidarCost = [](const auto& p, const auto& table, int minD, auto& cost, auto support) {
+      cuda::lidarCost(p, table, minD, cost, support);
+    };
+    s.lidarCoverage = [](const auto& p, int rows, auto out) { cuda::lidarCoverage(p, rows, out); };
+    s.fuseCosts = [](const auto& l, const auto& st, auto support, int w, bool flag, auto& out) {
+      cuda::fuseCosts(l, st, support, w, flag, out);
+    };
+    s.fuseCostsPerPixel = [](const auto& l, const auto& st, auto support, auto weights, bool flag, auto& out) {
+      cuda::fuseCosts(l, st, support, weights, flag, out);
+    };
+    s.aggregatePaths = [](const auto& cost, int P1, int P2, int paths, auto& sum) {
+      cuda::aggregatePaths(cost, P1, P2, paths, sum);
+    };
+    s.selectDisparity = [](const auto& sum, int minD, int u, bool sub, auto out) {
+      cuda::selectDisparity(sum, minD, u, sub, out);
+    };
+    s.rightDisparityIndex = [](const auto& sum, int minD, auto out) { cuda::rightDisparityIndex(sum, minD, out); };
+    s.leftRightCheck = [](auto sel, auto right, auto support, int minD, int maxDiff, bool keep) {
+      cuda::leftRightCheck(sel, right, support, minD, maxDiff, keep);
+    };
+    s.medianFilter = [](auto in, int size, auto out) { cuda::medianFilter(in, size, out); };
+    s.peakRatioMargin = [](const auto& sum, auto best, auto out, auto cost) {
+      cuda::peakRatioMargin(sum, best, out, cost);
+    };
+    s.leftRightDifference = [](auto best, auto right, int minD, auto out) {
+      cuda::leftRightDifference(best, right, minD, out);
+    };
+    return true;
+  }
+#endif
   (void)backend;
   (void)threads;
   (void)s;
@@ -139,7 +182,9 @@ class BackendStages : public ::testing::TestWithParam<std::tuple<std::string, in
  protected:
   void SetUp() override {
     const std::string& name = std::get<0>(GetParam());
-    if (!isAvailable(backendFromString(name))) GTEST_SKIP() << "backend " << name << " is not built";
+    if (!isAvailable(backendFromString(name))) {
+      GTEST_SKIP() << "backend " << name << ": " << unavailableReason(backendFromString(name));
+    }
     if (!stagesOf(name, std::get<1>(GetParam()), stages_)) GTEST_SKIP() << name << " has no stage entry points";
   }
   StageSet stages_;
@@ -436,7 +481,9 @@ class BackendFrames : public ::testing::TestWithParam<std::tuple<std::string, in
 
 TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
   const auto& [name, threads, c] = GetParam();
-  if (!isAvailable(backendFromString(name))) GTEST_SKIP() << "backend " << name << " is not built";
+  if (!isAvailable(backendFromString(name))) {
+    GTEST_SKIP() << "backend " << name << ": " << unavailableReason(backendFromString(name));
+  }
   Parameters params;
   c.tweak(params);
   params.threads = threads;
@@ -545,15 +592,47 @@ TEST(BackendReuse, OneMatcherThroughChangingFramesMatchesCpuRef) {
   }
 }
 
-TEST(BackendRegistry, AutoIsTheFastestBuiltBackend) {
+TEST(BackendRegistry, AutoIsTheFastestBackendThatRunsHere) {
+  // cuda where a device is present, else cpu where Highway was found, else cpu_ref.
+  const Backend expected = isAvailable(Backend::Cuda) ? Backend::Cuda
+                           : isAvailable(Backend::Cpu) ? Backend::Cpu
+                                                       : Backend::CpuRef;
+  EXPECT_EQ(resolve(Backend::Auto), expected);
+  EXPECT_EQ(Matcher::create(Backend::Auto)->backend(), expected);
   if (isAvailable(Backend::Cpu)) {
-    EXPECT_EQ(resolve(Backend::Auto), Backend::Cpu);
-    EXPECT_EQ(Matcher::create(Backend::Auto)->backend(), Backend::Cpu);
     EXPECT_NE(simdTarget(), "none");
-  } else {
-    EXPECT_EQ(resolve(Backend::Auto), Backend::CpuRef);
   }
   EXPECT_TRUE(isAvailable(Backend::CpuRef));
+  EXPECT_EQ(unavailableReason(Backend::CpuRef), "");
+}
+
+// A backend that is built but cannot run here (cuda without a device, as in CI) or is not built
+// at all says which, and Matcher::create refuses it instead of failing later.
+TEST(BackendRegistry, UnavailableBackendsSayWhy) {
+  for (const Backend b : {Backend::Cpu, Backend::Cuda}) {
+    const std::string why = unavailableReason(b);
+    EXPECT_EQ(isAvailable(b), why.empty());
+    if (why.empty()) continue;
+    try {
+      Matcher::create(b);
+      ADD_FAILURE() << toString(b) << " is unavailable (" << why << ") but was created";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(toString(b)), std::string::npos) << e.what();
+    }
+  }
+#ifdef LIDAR_SGM_TEST_CUDA_BACKEND
+  // Built: the reason, if any, is the device's, never "not built".
+  EXPECT_EQ(unavailableReason(Backend::Cuda).find("not built"), std::string::npos) << unavailableReason(Backend::Cuda);
+  if (!isAvailable(Backend::Cuda)) {
+    try {
+      Matcher::create(Backend::Cuda);
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(unavailableReason(Backend::Cuda)), std::string::npos) << e.what();
+    }
+  }
+#else
+  EXPECT_NE(unavailableReason(Backend::Cuda).find("not built"), std::string::npos);
+#endif
 }
 
 }  // namespace

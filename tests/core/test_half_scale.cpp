@@ -76,7 +76,7 @@ TEST(HalfScale, MatcherEqualsTheHandMadeHalfScalePipeline) {
                                                   halfOut.view());
   Image<std::int16_t> expected(131, 63);
   upscaleDisparity(std::as_const(halfOut).view(), expected.view());
-  for (Backend backend : {Backend::CpuRef, Backend::Cpu}) {
+  for (Backend backend : {Backend::CpuRef, Backend::Cpu, Backend::Cuda}) {
     if (!isAvailable(backend)) continue;
     auto matcher = Matcher::create(backend, full);
     Image<std::int16_t> out(131, 63);

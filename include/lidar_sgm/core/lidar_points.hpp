@@ -40,6 +40,11 @@ class LidarPoints {
   const int* end(int x, int y) const { return disparities16_.data() + pixelStart_[index(x, y) + 1]; }
   int count(int x, int y) const { return static_cast<int>(end(x, y) - begin(x, y)); }
 
+  /// The compressed rows themselves, for a backend that copies them as they are (to a GPU):
+  /// pixel (x, y) holds disparities16()[pixelStarts()[y * width() + x] .. pixelStarts()[... + 1]).
+  const std::vector<int>& pixelStarts() const { return pixelStart_; }
+  const std::vector<int>& disparities16() const { return disparities16_; }
+
  private:
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
   int width_ = 0;

@@ -14,18 +14,23 @@ namespace lidar_sgm {
 struct ConfidenceScratch;
 
 enum class Backend {
-  Auto,    ///< the fastest backend built into this library (cuda > cpu > cpu_ref)
+  Auto,    ///< the fastest backend built into this library that can run here (cuda > cpu > cpu_ref)
   CpuRef,  ///< naive reference loops, single-threaded: the specification
   Cpu,     ///< SIMD (runtime-dispatched) + threads, bit-identical to cpu_ref
-  Cuda,    ///< GPU (not built yet)
+  Cuda,    ///< NVIDIA GPU (CUDA), bit-identical to cpu_ref; needs a device at run time
 };
 
 std::string toString(Backend backend);
 /// "auto", "cpu_ref", "cpu", "cuda"; throws std::invalid_argument naming the accepted values.
 Backend backendFromString(const std::string& name);
-/// Whether this build of the library contains `backend` (Auto always is).
+/// Whether this build of the library contains `backend` and it can run on this machine (cuda:
+/// a CUDA device is present). Auto always is.
 bool isAvailable(Backend backend);
-/// The backend Backend::Auto stands for in this build (never Auto).
+/// "" when isAvailable(backend), else why not: "not built into this library (...)", or for cuda
+/// "no CUDA device" / the driver's message.
+std::string unavailableReason(Backend backend);
+/// The backend Backend::Auto stands for here (never Auto): the fastest that is built and can run
+/// (cuda when a device is present, else cpu, else cpu_ref); other backends map to themselves.
 Backend resolve(Backend backend);
 /// The instruction set the `cpu` backend dispatched to on this machine at run time ("AVX2",
 /// "AVX3" (AVX-512), "SSE4", "NEON", "EMU128" ...), or "none" when the backend is not built.
@@ -54,9 +59,12 @@ struct StageTimings {
   double leftRightCheck = 0;
   double medianFilter = 0;
   double confidence = 0;  ///< the core's part (LiDAR distance, texture, combination)
+  /// cuda: copies between host and device memory (the stages above are then kernel times, from
+  /// CUDA events; the costs are computed inside aggregatePaths). 0 on the CPU backends.
+  double transfers = 0;
   double total() const {
     return census + censusCost + verticalCensusCost + lidarCost + fuseCosts + aggregatePaths + selectDisparity +
-           leftRightCheck + medianFilter + confidence;
+           leftRightCheck + medianFilter + confidence + transfers;
   }
 };
 
@@ -98,7 +106,8 @@ struct VerticalView {
 class Matcher {
  public:
   /// Throws std::invalid_argument for invalid parameters (the message names the parameter and
-  /// its allowed range) and std::runtime_error for a backend that is not built in.
+  /// its allowed range) and std::runtime_error for a backend that is not built in or cannot run
+  /// here (cuda without a device), saying which.
   static std::unique_ptr<Matcher> create(Backend backend, const Parameters& params = {});
 
   virtual ~Matcher() = default;

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "backends/common/cost_volume.hpp"
+#include "backends/common/host_device.hpp"
 #include "core/baseline_ratio.hpp"
 #include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/image.hpp"
@@ -30,7 +31,7 @@ inline int alphaWeight(float alpha) { return static_cast<int>(alpha * 256.0f + 0
 
 /// Triple-SGM: the vertical disparity [rows] of the absolute horizontal disparity `d`,
 /// dv = (d * ratio16 + 32768) >> 16, i.e. d * b_up / b rounded half up (floor, also for d < 0).
-inline int verticalDisparity(int d, int ratio16) {
+LIDAR_SGM_HOST_DEVICE inline int verticalDisparity(int d, int ratio16) {
   const int scaled = d * ratio16 + 32768;  // |d| <= 1024, ratio16 <= 4 * 65536: fits in 31 bits
   return scaled >= 0 ? scaled / 65536 : -((-scaled + 65535) / 65536);  // floor division
 }

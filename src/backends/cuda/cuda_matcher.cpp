@@ -1,0 +1,282 @@
+#include "backends/cuda/cuda_matcher.hpp"
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <cuda_runtime_api.h>
+
+#include "backends/common/lidar_cost_table.hpp"
+#include "backends/common/lidar_weights.hpp"
+#include "backends/common/stages.hpp"
+#include "backends/cuda/cuda_error.hpp"
+#include "backends/cuda/device_buffer.hpp"
+#include "backends/cuda/kernels.hpp"
+#include "backends/cuda/transfers.hpp"
+
+namespace lidar_sgm {
+
+std::unique_ptr<Matcher> createCudaMatcher(const Parameters& params) {
+  return std::make_unique<cuda::CudaMatcher>(params);
+}
+
+std::string cudaBackendUnavailable() { return cuda::cudaUnavailableReason(); }
+
+namespace cuda {
+
+std::string cudaUnavailableReason() {
+  int count = 0;
+  const cudaError_t error = cudaGetDeviceCount(&count);
+  if (error != cudaSuccess) {
+    (void)cudaGetLastError();
+    return std::string("no usable CUDA device (") + cudaGetErrorName(error) + ": " + cudaGetErrorString(error) + ")";
+  }
+  if (count == 0) return "no CUDA device";
+  return "";
+}
+
+namespace {
+
+// The points in time between which the stages of a frame ran, recorded on the stream.
+enum Mark { kStart, kUploaded, kCensus, kLidar, kAggregated, kSelected, kChecked, kFiltered, kDownloaded, kMarks };
+
+}  // namespace
+
+struct CudaMatcher::Device {
+  cudaStream_t stream = nullptr;
+  std::array<cudaEvent_t, kMarks> events{};
+
+  DeviceBuffer<std::uint8_t> images8[3];    // left, right, up (8-bit frames)
+  DeviceBuffer<std::uint16_t> images16[3];  // ... (16-bit frames)
+  DeviceBuffer<std::uint64_t> census[3];
+  DeviceBuffer<int> pixelStart;
+  DeviceBuffer<int> disparities16;
+  DeviceBuffer<std::uint8_t> table;
+  DeviceBuffer<std::uint16_t> weights;  // adaptive alpha only
+  DeviceBuffer<std::uint8_t> support;
+  DeviceBuffer<std::uint8_t> coverage;
+  DeviceBuffer<std::uint16_t> pathCosts;  // one L_r volume per path
+  DeviceBuffer<std::uint16_t> sum;
+  DeviceBuffer<std::int16_t> rawDisparity;
+  DeviceBuffer<std::int16_t> bestIndex;
+  DeviceBuffer<std::int16_t> rightIndex;
+  DeviceBuffer<std::int16_t> disparity;
+  DeviceBuffer<std::uint8_t> margin;
+  DeviceBuffer<std::uint16_t> bestCost;
+  DeviceBuffer<std::uint8_t> leftRightDifference;
+  LidarCostTable hostTable;
+  float tableSigma = 0;
+  int tableCap = -1;
+  Image<std::uint16_t> hostWeights;
+
+  Device() {
+    LIDAR_SGM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+    for (cudaEvent_t& e : events) LIDAR_SGM_CUDA_CHECK(cudaEventCreate(&e));
+  }
+  ~Device() {
+    for (cudaEvent_t e : events) {
+      if (e != nullptr) cudaEventDestroy(e);
+    }
+    if (stream != nullptr) cudaStreamDestroy(stream);
+  }
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  void mark(Mark m) { LIDAR_SGM_CUDA_CHECK(cudaEventRecord(events[m], stream)); }
+  double ms(Mark from, Mark to) const {
+    float value = 0;
+    LIDAR_SGM_CUDA_CHECK(cudaEventElapsedTime(&value, events[from], events[to]));
+    return value;
+  }
+};
+
+CudaMatcher::CudaMatcher(const Parameters& params) : Matcher(params) {
+  const std::string why = cudaUnavailableReason();
+  if (!why.empty()) throw std::runtime_error("backend cuda: " + why);
+  device_ = std::make_unique<Device>();
+}
+
+CudaMatcher::~CudaMatcher() = default;
+
+void CudaMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                      const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
+  runStages(params, left, right, nullptr, 0, lidar, mode, disparity);
+}
+
+void CudaMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
+                                  const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
+                                  ImageView<std::int16_t> disparity) {
+  runStages(params, left, right, &up, ratio16, lidar, mode, disparity);
+}
+
+namespace {
+
+template <typename T>
+DeviceImage<T> denseImage(DeviceBuffer<std::remove_const_t<T>>& buffer, int width, int height) {
+  buffer.reserve(static_cast<std::size_t>(width) * height);
+  return DeviceImage<T>{buffer.data(), width, height, width};
+}
+
+template <typename T>
+DeviceImage<const T> asConst(DeviceImage<T> image) {
+  return DeviceImage<const T>{image.data, image.width, image.height, image.stride};
+}
+
+template <typename T>
+DeviceVolume<const T> asConst(DeviceVolume<T> volume) {
+  return DeviceVolume<const T>{volume.data, volume.width, volume.height, volume.numDisparities};
+}
+
+}  // namespace
+
+void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, const GrayImageView& right,
+                            const GrayImageView* up, int ratio16, const LidarPoints* lidar, MatchMode mode,
+                            ImageView<std::int16_t> disparity) {
+  Device& dev = *device_;
+  const int width = disparity.width;
+  const int height = disparity.height;
+  const int D = p.numDisparities;
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  cudaStream_t stream = dev.stream;
+  dev.mark(kStart);
+
+  // Uploads: the images, the LiDAR points as LidarPoints keeps them, the cost table and weights.
+  CostSettings s;
+  s.width = width;
+  s.height = height;
+  s.numDisparities = D;
+  s.minDisparity = p.minDisparity;
+  s.useCamera = mode != MatchMode::LidarOnly;
+  s.useLidar = mode != MatchMode::StereoOnly;
+  s.censusScale = p.censusType == CensusType::Census9x7 ? 1 : 2;
+  s.ratio16 = ratio16;
+  const GrayImageView* cameras[3] = {&left, &right, up};
+  const int cameraCount = !s.useCamera ? 0 : up != nullptr ? 3 : 2;
+  const bool sixteen = s.useCamera && left.gray8.empty();
+  for (int i = 0; i < cameraCount; ++i) {
+    if (sixteen) {
+      uploadImage(cameras[i]->gray16, dev.images16[i], stream);
+    } else {
+      uploadImage(cameras[i]->gray8, dev.images8[i], stream);
+    }
+  }
+  if (s.useLidar) {
+    uploadLidar(*lidar, dev.pixelStart, dev.disparities16, stream);
+    s.lidar = DeviceLidar{dev.pixelStart.data(), dev.disparities16.data(), width, height};
+    if (dev.tableSigma != p.sigma || dev.tableCap != p.lidarCostCap) {
+      dev.hostTable = LidarCostTable(p.sigma, p.lidarCostCap);
+      dev.tableSigma = p.sigma;
+      dev.tableCap = p.lidarCostCap;
+      uploadVector(dev.hostTable.entries(), dev.table, stream);
+    }
+    s.table = DeviceCostTable{dev.table.data(), static_cast<int>(dev.hostTable.entries().size()), dev.hostTable.cap()};
+    if (mode == MatchMode::Fused) {
+      if (p.alphaMode == AlphaMode::Fixed) {
+        s.alphaWeight = alphaWeight(p.alpha);
+      } else {
+        // The per-pixel LiDAR weight of Eq. 5, computed by the code every backend shares.
+        dev.hostWeights.resize(width, height);
+        lidarWeights(*lidar, p, dev.hostWeights.view());
+        uploadImage(std::as_const(dev.hostWeights).view(), dev.weights, stream);
+        s.weights = DeviceImage<const std::uint16_t>{dev.weights.data(), width, height, width};
+      }
+    }
+    s.stereoCostWithoutLidar = p.stereoCostWithoutLidar;
+  }
+  dev.mark(kUploaded);
+
+  if (s.useCamera) {
+    DeviceImage<std::uint64_t> census[3];
+    for (int i = 0; i < cameraCount; ++i) {
+      census[i] = denseImage<std::uint64_t>(dev.census[i], width, height);
+      if (sixteen) {
+        cuda::censusTransform(DeviceImage<const std::uint16_t>{dev.images16[i].data(), width, height, width}, p.censusType,
+                        census[i], stream);
+      } else {
+        cuda::censusTransform(DeviceImage<const std::uint8_t>{dev.images8[i].data(), width, height, width}, p.censusType,
+                        census[i], stream);
+      }
+    }
+    s.leftCensus = asConst(census[0]);
+    s.rightCensus = asConst(census[1]);
+    if (cameraCount == 3) s.upCensus = asConst(census[2]);
+  }
+  dev.mark(kCensus);
+  const DeviceImage<std::uint8_t> support = denseImage<std::uint8_t>(dev.support, width, height);
+  if (s.useLidar) cuda::lidarSupport(s.lidar, support, stream);
+  dev.mark(kLidar);
+
+  // Eq. 1 with the matching cost (C_S, C_S3, C_L or Eq. 5) computed inside the recursion.
+  dev.pathCosts.reserve(pixels * D * static_cast<std::size_t>(p.paths));
+  const DeviceVolume<std::uint16_t> pathCosts{dev.pathCosts.data(), width, height, D};
+  cuda::aggregatePaths(s, p.P1, p.P2, p.paths, pathCosts, stream);
+  dev.mark(kAggregated);
+
+  dev.sum.reserve(pixels * D);
+  const DeviceVolume<std::uint16_t> sum{dev.sum.data(), width, height, D};
+  const DeviceImage<std::int16_t> raw = denseImage<std::int16_t>(dev.rawDisparity, width, height);
+  const DeviceImage<std::int16_t> best = denseImage<std::int16_t>(dev.bestIndex, width, height);
+  cuda::selectDisparity(asConst(pathCosts), p.paths, sum, p.minDisparity, p.uniquenessRatio, p.subpixel, raw, best, stream);
+  // The confidence inputs that need S (core/confidence.hpp), read before the check invalidates.
+  const bool confidenceLr = p.confidence && mode != MatchMode::LidarOnly;
+  const DeviceImage<std::uint8_t> margin = denseImage<std::uint8_t>(dev.margin, width, height);
+  const DeviceImage<std::uint16_t> bestCost = denseImage<std::uint16_t>(dev.bestCost, width, height);
+  if (p.confidence) cuda::peakRatioMargin(asConst(sum), asConst(best), margin, bestCost, stream);
+  dev.mark(kSelected);
+
+  const bool lrCheck = mode == MatchMode::StereoOnly ? p.lrCheck
+                                                      : mode == MatchMode::Fused && p.lrCheck && p.lrCheckWithLidar;
+  const DeviceImage<std::int16_t> rightIndex = denseImage<std::int16_t>(dev.rightIndex, width, height);
+  const DeviceImage<std::uint8_t> difference = denseImage<std::uint8_t>(dev.leftRightDifference, width, height);
+  if (confidenceLr || lrCheck) cuda::rightDisparityIndex(asConst(sum), p.minDisparity, rightIndex, stream);
+  if (confidenceLr) cuda::leftRightDifference(asConst(best), asConst(rightIndex), p.minDisparity, difference, stream);
+  if (lrCheck) {
+    DeviceImage<const std::uint8_t> checkSupport;
+    if (mode == MatchMode::Fused) {
+      const DeviceImage<std::uint8_t> coverage = denseImage<std::uint8_t>(dev.coverage, width, height);
+      cuda::lidarCoverage(s.lidar, p.lidarCoverageRows, coverage, stream);
+      checkSupport = asConst(coverage);
+    }
+    cuda::leftRightCheck(raw, best, asConst(rightIndex), checkSupport, p.minDisparity, p.disp12MaxDiff,
+                   /*keepNoCounterpart=*/mode == MatchMode::Fused, stream);
+  }
+  dev.mark(kChecked);
+  const DeviceImage<std::int16_t> filtered = denseImage<std::int16_t>(dev.disparity, width, height);
+  cuda::medianFilter(asConst(raw), p.medianSize, filtered, stream);
+  dev.mark(kFiltered);
+
+  // Downloads: the disparity, and what the core reads besides it.
+  downloadImage(asConst(filtered), disparity, stream);
+  support_.resize(width, height);
+  if (s.useLidar) {
+    downloadImage(asConst(support), support_.view(), stream);
+  } else {
+    support_.fill(0);
+  }
+  if (p.confidence) {
+    confidenceInputs_.margin.resize(width, height);
+    confidenceInputs_.bestCost.resize(width, height);
+    downloadImage(asConst(margin), confidenceInputs_.margin.view(), stream);
+    downloadImage(asConst(bestCost), confidenceInputs_.bestCost.view(), stream);
+  }
+  if (confidenceLr) {
+    confidenceInputs_.leftRightDifference.resize(width, height);
+    downloadImage(asConst(difference), confidenceInputs_.leftRightDifference.view(), stream);
+  }
+  dev.mark(kDownloaded);
+  LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(stream));
+
+  // Kernel time per stage (CUDA events). The costs are computed inside the aggregation, so
+  // censusCost, lidarCost's volume and fuseCosts have no time of their own.
+  timings_.transfers = dev.ms(kStart, kUploaded) + dev.ms(kFiltered, kDownloaded);
+  timings_.census = dev.ms(kUploaded, kCensus);
+  timings_.lidarCost = dev.ms(kCensus, kLidar);
+  timings_.aggregatePaths = dev.ms(kLidar, kAggregated);
+  timings_.selectDisparity = dev.ms(kAggregated, kSelected);
+  timings_.leftRightCheck = dev.ms(kSelected, kChecked);
+  timings_.medianFilter = dev.ms(kChecked, kFiltered);
+}
+
+}  // namespace cuda
+}  // namespace lidar_sgm

@@ -1,0 +1,78 @@
+#pragma once
+/// @file kernels.hpp  The CUDA backend's stages as kernel launches on a stream, one .cu file per
+/// stage (named as cpu_ref's). Inputs and outputs are device memory; nothing here copies or
+/// synchronises. Each launch checks its own launch error.
+
+#include <cstdint>
+
+#include <cuda_runtime_api.h>
+
+#include "backends/cuda/device_types.hpp"
+#include "lidar_sgm/core/parameters.hpp"
+
+namespace lidar_sgm {
+namespace cuda {
+
+// census.cu
+void censusTransform(DeviceImage<const std::uint8_t> image, CensusType type, DeviceImage<std::uint64_t> census,
+                     cudaStream_t stream);
+void censusTransform(DeviceImage<const std::uint16_t> image, CensusType type, DeviceImage<std::uint64_t> census,
+                     cudaStream_t stream);
+
+// lidar_cost.cu: 1 where a point lies in the pixel's 3x3 neighbourhood (C_L has information).
+void lidarSupport(DeviceLidar lidar, DeviceImage<std::uint8_t> support, cudaStream_t stream);
+/// 1 where a point lies within +-1 column and +-rows rows (the left-right check spares it).
+void lidarCoverage(DeviceLidar lidar, int rows, DeviceImage<std::uint8_t> coverage, cudaStream_t stream);
+
+// cost_volume.cu: the matching cost as a volume. The matcher never stores it (the recursion
+// computes it); these exist so that each cost is tested against cpu_ref's volume on its own.
+enum class CostPart {
+  Census,          ///< C_S
+  VerticalCensus,  ///< C_V (Triple-SGM)
+  Lidar,           ///< C_L
+  Matching,        ///< C as the recursion sees it (settings decide: C_S, C_S3, C_L or Eq. 5)
+};
+void matchingCostVolume(const CostSettings& settings, CostPart part, DeviceVolume<std::uint8_t> cost,
+                        cudaStream_t stream);
+/// C_S3 from stored C_S and C_V volumes (combineCameraCosts).
+void combineCameraCosts(DeviceVolume<const std::uint8_t> horizontal, DeviceVolume<const std::uint8_t> vertical,
+                        DeviceVolume<std::uint8_t> combined, cudaStream_t stream);
+/// Eq. 5 from stored C_L and C_S volumes (fuseCosts): per-pixel weights, or alphaWeight if empty.
+void fuseCosts(DeviceVolume<const std::uint8_t> lidar, DeviceVolume<const std::uint8_t> stereo,
+               DeviceImage<const std::uint8_t> support, DeviceImage<const std::uint16_t> weights, int alphaWeight,
+               bool stereoCostWithoutLidar, DeviceVolume<std::uint8_t> fused, cudaStream_t stream);
+
+// aggregation.cu: Eq. 1 along `paths` directions (cpu_ref's order), L_r of direction r into
+// pathCosts + r * volume size. The matching cost is computed in the recursion (`settings`) or
+// read from a stored volume (`cost`, for the stage test).
+void aggregatePaths(const CostSettings& settings, int P1, int P2, int paths, DeviceVolume<std::uint16_t> pathCosts,
+                    cudaStream_t stream);
+void aggregatePaths(DeviceVolume<const std::uint8_t> cost, int P1, int P2, int paths,
+                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream);
+
+// selection.cu: S = sum of the `numPaths` volumes at pathCosts (written to `sum` unless its data
+// is null), then winner-takes-all with uniqueness and sub-pixel (Eq. 2) unless disparity16 is
+// empty.
+void selectDisparity(DeviceVolume<const std::uint16_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
+                     int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
+                     DeviceImage<std::int16_t> bestIndex, cudaStream_t stream);
+
+// confidence_inputs.cu
+void peakRatioMargin(DeviceVolume<const std::uint16_t> sum, DeviceImage<const std::int16_t> bestIndex,
+                     DeviceImage<std::uint8_t> margin, DeviceImage<std::uint16_t> bestCost, cudaStream_t stream);
+void leftRightDifference(DeviceImage<const std::int16_t> bestIndex, DeviceImage<const std::int16_t> rightIndex,
+                         int minDisparity, DeviceImage<std::uint8_t> difference, cudaStream_t stream);
+
+// lr_check.cu
+void rightDisparityIndex(DeviceVolume<const std::uint16_t> sum, int minDisparity,
+                         DeviceImage<std::int16_t> rightIndex, cudaStream_t stream);
+/// `support` may be empty (no LiDAR).
+void leftRightCheck(DeviceImage<std::int16_t> disparity16, DeviceImage<std::int16_t> bestIndex,
+                    DeviceImage<const std::int16_t> rightIndex, DeviceImage<const std::uint8_t> support,
+                    int minDisparity, int disp12MaxDiff, bool keepNoCounterpart, cudaStream_t stream);
+
+// median.cu
+void medianFilter(DeviceImage<const std::int16_t> in, int size, DeviceImage<std::int16_t> out, cudaStream_t stream);
+
+}  // namespace cuda
+}  // namespace lidar_sgm
