@@ -192,6 +192,46 @@ void Matcher::compute(const GrayImageView& left, const GrayImageView& right, con
   lastUpCamera_ = haveUp;
 }
 
+void Matcher::computeOnDevice(const DeviceFrame& frame, ImageView<std::int16_t> disparity,
+                              MemorySpace disparitySpace) {
+  const bool haveLidar = frame.lidar != nullptr && frame.lidarCount > 0;
+  const bool haveRight = !frame.right.empty();
+  if (!haveRight && !haveLidar) {
+    throw std::invalid_argument(
+        "no input to match: give a right image (stereo), LiDAR points (LiDAR-only), or both (fused)");
+  }
+  const MatchMode mode = haveRight ? (haveLidar ? MatchMode::Fused : MatchMode::StereoOnly) : MatchMode::LidarOnly;
+  const int width = frame.left.empty() ? frame.width : frame.left.width();
+  const int height = frame.left.empty() ? frame.height : frame.left.height();
+  if (haveRight && frame.left.empty()) throw std::invalid_argument("the left image is empty");
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument("DeviceFrame without a left image must give its size (width, height), got " +
+                                sizeText(width, height));
+  }
+  if (haveRight && (frame.right.width() != width || frame.right.height() != height)) {
+    throw std::invalid_argument("left and right images differ in size: left " + sizeText(width, height) +
+                                ", right " + sizeText(frame.right.width(), frame.right.height()));
+  }
+  if (haveRight && frame.left.gray8.empty() != frame.right.gray8.empty()) {
+    throw std::invalid_argument("left and right images differ in bit depth (one is 8-bit, the other 16-bit)");
+  }
+  if (disparity.data == nullptr || disparity.width != width || disparity.height != height ||
+      disparity.stride < width) {
+    throw std::invalid_argument("the output disparity image is " + sizeText(disparity.width, disparity.height) +
+                                " but the frame is " + sizeText(width, height));
+  }
+  timings_ = StageTimings{};
+  rescaleMs_ = 0;
+  if (!params_.confidence) confidence_ = Image<std::uint8_t>();
+  runOnDevice(frame, mode, disparity, disparitySpace);
+  recordFrame(mode, false);
+}
+
+void Matcher::runOnDevice(const DeviceFrame&, MatchMode, ImageView<std::int16_t>, MemorySpace) {
+  throw std::runtime_error("backend " + toString(backend()) +
+                           " reads host memory only; computeOnDevice needs the cuda backend");
+}
+
 void Matcher::dispatch(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
                        const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
   Parameters matched = params_;

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <type_traits>
+#include <vector>
 
 #include "backend_test_scenes.hpp"
 #include "backends/common/lidar_weights.hpp"
@@ -591,6 +593,136 @@ TEST(BackendReuse, OneMatcherThroughChangingFramesMatchesCpuRef) {
     }
   }
 }
+
+// Only a GPU backend takes device memory; the others say so instead of reading a bad pointer.
+TEST(DeviceFrames, HostBackendsRefuseDeviceMemory) {
+  for (const Backend b : {Backend::CpuRef, Backend::Cpu}) {
+    if (!isAvailable(b)) continue;
+    const BackendScene scene = makeBackendScene(64, 40, 0, 32, 3);
+    Parameters params;
+    params.numDisparities = 32;
+    auto matcher = Matcher::create(b, params);
+    DeviceFrame frame;
+    frame.left = scene.left8.view();
+    frame.right = scene.right8.view();
+    Image<std::int16_t> out(64, 40);
+    try {
+      matcher->computeOnDevice(frame, out.view());
+      ADD_FAILURE() << toString(b) << " accepted a device frame";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("cuda"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(toString(b)), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(DeviceFrames, BadDeviceFramesAreRefusedBeforeTheBackend) {
+  auto matcher = Matcher::create(Backend::CpuRef);
+  Image<std::int16_t> out(64, 40);
+  Image<std::uint8_t> left(64, 40), right(63, 40);
+  DeviceFrame frame;
+  EXPECT_THROW(matcher->computeOnDevice(frame, out.view()), std::invalid_argument);  // nothing to match
+  frame.left = left.view();
+  frame.right = right.view();
+  try {
+    matcher->computeOnDevice(frame, out.view());
+    ADD_FAILURE() << "mismatched sizes were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("differ in size"), std::string::npos) << e.what();
+  }
+  DeviceFrame lidarOnly;
+  std::vector<LidarSample> samples{{3, 4, 160}};
+  lidarOnly.lidar = samples.data();
+  lidarOnly.lidarCount = samples.size();
+  EXPECT_THROW(matcher->computeOnDevice(lidarOnly, out.view()), std::invalid_argument);  // no size given
+}
+
+#ifdef LIDAR_SGM_TEST_CUDA_BACKEND
+// The same frame from host memory and from device memory (padded rows, 8 and 16 bits, every
+// mode, the disparity to the host and to the device): identical results, equal to cpu_ref's.
+TEST(DeviceFrames, CudaDeviceInputsAndOutputsMatchHostInputs) {
+  if (!isAvailable(Backend::Cuda)) GTEST_SKIP() << "backend cuda: " << unavailableReason(Backend::Cuda);
+  const int width = 131;
+  const int height = 61;
+  const BackendScene scene = makeBackendScene(width, height, 0, 64, 41);
+  std::vector<LidarSample> samples;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (const int* d = scene.lidar.begin(x, y); d != scene.lidar.end(x, y); ++d) samples.push_back({x, y, *d});
+    }
+  }
+  cuda::DeviceMemory deviceSamples(samples.size() * sizeof(LidarSample));
+  deviceSamples.upload(samples.data(), samples.size() * sizeof(LidarSample));
+  for (const bool sixteen : {false, true}) {
+    // The padded host images, byte for byte on the device (same strides).
+    const auto onDevice = [](const auto& image, cuda::DeviceMemory& memory) {
+      using Pixel = std::remove_const_t<std::remove_reference_t<decltype(image.pixels[0])>>;
+      memory.upload(image.pixels.data(), image.pixels.size() * sizeof(Pixel));
+      return ImageView<const Pixel>(static_cast<const Pixel*>(memory.data()), image.width, image.height, image.stride);
+    };
+    const std::size_t bytes = sixteen ? scene.left16.pixels.size() * 2 : scene.left8.pixels.size();
+    cuda::DeviceMemory leftMemory(bytes), rightMemory(bytes);
+    GrayImageView hostLeft, hostRight, deviceLeft, deviceRight;
+    if (sixteen) {
+      hostLeft = scene.left16.view();
+      hostRight = scene.right16.view();
+      deviceLeft = onDevice(scene.left16, leftMemory);
+      deviceRight = onDevice(scene.right16, rightMemory);
+    } else {
+      hostLeft = scene.left8.view();
+      hostRight = scene.right8.view();
+      deviceLeft = onDevice(scene.left8, leftMemory);
+      deviceRight = onDevice(scene.right8, rightMemory);
+    }
+    for (const std::string mode : {"stereo", "lidar", "fused"}) {
+      for (const float scale : {1.0f, 0.5f}) {
+        Parameters params;
+        params.numDisparities = 64;
+        params.scale = scale;
+        const bool withRight = mode != "lidar";
+        const bool withLidar = mode != "stereo";
+        Image<std::int16_t> expected(width, height), fromHost(width, height), fromDevice(width, height);
+        Matcher::create(Backend::CpuRef, params)
+            ->compute(hostLeft, withRight ? hostRight : GrayImageView(), withLidar ? &scene.lidar : nullptr,
+                      expected.view());
+        auto matcher = Matcher::create(Backend::Cuda, params);
+        matcher->compute(hostLeft, withRight ? hostRight : GrayImageView(), withLidar ? &scene.lidar : nullptr,
+                         fromHost.view());
+        EXPECT_TRUE(sameImages(expected, fromHost)) << mode << " scale " << scale << (sixteen ? " 16-bit" : "");
+        DeviceFrame frame;
+        frame.left = deviceLeft;
+        if (withRight) frame.right = deviceRight;
+        if (withLidar) {
+          frame.lidar = static_cast<const LidarSample*>(deviceSamples.data());
+          frame.lidarCount = samples.size();
+        }
+        matcher->computeOnDevice(frame, fromDevice.view());
+        EXPECT_TRUE(sameImages(expected, fromDevice)) << mode << " scale " << scale << ", device input";
+        Image<std::uint8_t> confidence(width, height);
+        for (int y = 0; y < height; ++y) {
+          for (int x = 0; x < width; ++x) confidence(x, y) = matcher->confidence()(x, y);
+        }
+        // The disparity left on the device, in a padded buffer.
+        const int stride = width + 5;
+        cuda::DeviceMemory outMemory(static_cast<std::size_t>(stride) * height * sizeof(std::int16_t));
+        matcher->computeOnDevice(
+            frame, ImageView<std::int16_t>(static_cast<std::int16_t*>(outMemory.data()), width, height, stride),
+            MemorySpace::Device);
+        std::vector<std::int16_t> padded(static_cast<std::size_t>(stride) * height);
+        outMemory.download(padded.data(), padded.size() * sizeof(std::int16_t));
+        Image<std::int16_t> deviceOut(width, height);
+        for (int y = 0; y < height; ++y) {
+          for (int x = 0; x < width; ++x) deviceOut(x, y) = padded[static_cast<std::size_t>(y) * stride + x];
+        }
+        EXPECT_TRUE(sameImages(expected, deviceOut)) << mode << " scale " << scale << ", device output";
+        for (int y = 0; y < height; ++y) {
+          for (int x = 0; x < width; ++x) ASSERT_EQ(matcher->confidence()(x, y), confidence(x, y)) << x << "," << y;
+        }
+      }
+    }
+  }
+}
+#endif
 
 TEST(BackendRegistry, AutoIsTheFastestBackendThatRunsHere) {
   // cuda where a device is present, else cpu where Highway was found, else cpu_ref.

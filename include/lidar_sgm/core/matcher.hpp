@@ -1,6 +1,7 @@
 #pragma once
 /// @file matcher.hpp  The one entry point of the core: LiDAR-SGM on a frame, any backend.
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -92,6 +93,23 @@ struct VerticalView {
   bool empty() const { return up.empty(); }
 };
 
+/// Where the memory behind a view or pointer lives.
+enum class MemorySpace {
+  Host,    ///< ordinary host memory
+  Device,  ///< memory of the current CUDA device (cudaMalloc'd, or a GPU decoder's output)
+};
+
+/// A frame that is already in GPU memory, for Matcher::computeOnDevice (the cuda backend): the
+/// views and the LiDAR samples hold device pointers (row strides in elements, as on the host).
+struct DeviceFrame {
+  GrayImageView left;                  ///< may be empty in LiDAR-only mode (then width/height say the size)
+  GrayImageView right;                 ///< empty: LiDAR-only
+  const LidarSample* lidar = nullptr;  ///< `lidarCount` projected points; null: stereo-only
+  std::size_t lidarCount = 0;
+  int width = 0;   ///< the frame's size when `left` is empty; else ignored
+  int height = 0;
+};
+
 /// Computes a dense disparity image for the left rectified camera.
 ///
 /// @code
@@ -136,6 +154,16 @@ class Matcher {
   void compute(const GrayImageView& left, const GrayImageView& right, const VerticalView& up,
                const LidarPoints* lidar, ImageView<std::int16_t> disparity);
 
+  /// The cuda backend: compute() on a frame already in GPU memory, the disparity written to
+  /// `disparitySpace` (Device: `disparity` holds a device pointer and nothing is copied back).
+  /// Results equal compute()'s on the same pixels. The LiDAR samples are read back (12 bytes a
+  /// point) to be validated and bucketed as LidarPoints does; at scale 0.5, and for the confidence
+  /// (when parameters().confidence is set), the left image and the disparity are read back too,
+  /// since the half-scale resampling and the confidence's core part run on the host. Other
+  /// backends throw std::runtime_error.
+  void computeOnDevice(const DeviceFrame& frame, ImageView<std::int16_t> disparity,
+                       MemorySpace disparitySpace = MemorySpace::Host);
+
   MatchMode lastMode() const { return lastMode_; }
   /// Whether the last frame was matched with the up camera too (Triple-SGM).
   bool lastUsedUpCamera() const { return lastUpCamera_; }
@@ -168,6 +196,17 @@ class Matcher {
                                const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
                                ImageView<std::int16_t> disparity);
 
+  /// computeOnDevice after validation (the mode decided, timings reset); the default throws
+  /// std::runtime_error: only a GPU backend takes device memory.
+  virtual void runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
+                           MemorySpace disparitySpace);
+  /// The core's part of the confidence, after the backend ran on `left` (host, matched size).
+  void computeConfidence(const GrayImageView& left, MatchMode mode, ImageView<const std::int16_t> disparity);
+  void recordFrame(MatchMode mode, bool upCamera) {
+    lastMode_ = mode;
+    lastUpCamera_ = upCamera;
+  }
+
   Parameters params_;
   StageTimings timings_;
   Image<std::uint8_t> support_;
@@ -181,9 +220,6 @@ class Matcher {
                 const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
   void computeAtHalfScale(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
                           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
-
-  /// The core's part of the confidence, after the backend ran on `left` (matched size).
-  void computeConfidence(const GrayImageView& left, MatchMode mode, ImageView<const std::int16_t> disparity);
 
   Image<std::uint8_t> confidence_;
   Image<std::uint8_t> halfConfidence_;

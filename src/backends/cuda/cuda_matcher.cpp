@@ -1,9 +1,11 @@
 #include "backends/cuda/cuda_matcher.hpp"
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <cuda_runtime_api.h>
 
@@ -91,10 +93,19 @@ struct CudaMatcher::Device {
   }
 };
 
+// Host buffers of computeOnDevice: what comes back from the device, kept between frames.
+struct CudaMatcher::HostCopies {
+  std::vector<LidarSample> samples;
+  Image<std::uint8_t> left8, right8;
+  Image<std::uint16_t> left16, right16;
+  Image<std::int16_t> disparity;
+};
+
 CudaMatcher::CudaMatcher(const Parameters& params) : Matcher(params) {
   const std::string why = cudaUnavailableReason();
   if (!why.empty()) throw std::runtime_error("backend cuda: " + why);
   device_ = std::make_unique<Device>();
+  hostCopies_ = std::make_unique<HostCopies>();
 }
 
 CudaMatcher::~CudaMatcher() = default;
@@ -132,7 +143,7 @@ DeviceVolume<const T> asConst(DeviceVolume<T> volume) {
 
 void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, const GrayImageView& right,
                             const GrayImageView* up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                            ImageView<std::int16_t> disparity) {
+                            ImageView<std::int16_t> disparity, bool inputsOnDevice, bool outputOnDevice) {
   Device& dev = *device_;
   const int width = disparity.width;
   const int height = disparity.height;
@@ -154,11 +165,19 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
   const GrayImageView* cameras[3] = {&left, &right, up};
   const int cameraCount = !s.useCamera ? 0 : up != nullptr ? 3 : 2;
   const bool sixteen = s.useCamera && left.gray8.empty();
+  // The cameras as the census reads them: the caller's device memory as it is, or an upload.
+  DeviceImage<const std::uint8_t> images8[3];
+  DeviceImage<const std::uint16_t> images16[3];
   for (int i = 0; i < cameraCount; ++i) {
-    if (sixteen) {
+    if (inputsOnDevice) {
+      images8[i] = DeviceImage<const std::uint8_t>{cameras[i]->gray8.data, width, height, cameras[i]->gray8.stride};
+      images16[i] = DeviceImage<const std::uint16_t>{cameras[i]->gray16.data, width, height, cameras[i]->gray16.stride};
+    } else if (sixteen) {
       uploadImage(cameras[i]->gray16, dev.images16[i], stream);
+      images16[i] = DeviceImage<const std::uint16_t>{dev.images16[i].data(), width, height, width};
     } else {
       uploadImage(cameras[i]->gray8, dev.images8[i], stream);
+      images8[i] = DeviceImage<const std::uint8_t>{dev.images8[i].data(), width, height, width};
     }
   }
   if (s.useLidar) {
@@ -191,11 +210,9 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
     for (int i = 0; i < cameraCount; ++i) {
       census[i] = denseImage<std::uint64_t>(dev.census[i], width, height);
       if (sixteen) {
-        cuda::censusTransform(DeviceImage<const std::uint16_t>{dev.images16[i].data(), width, height, width}, p.censusType,
-                        census[i], stream);
+        cuda::censusTransform(images16[i], p.censusType, census[i], stream);
       } else {
-        cuda::censusTransform(DeviceImage<const std::uint8_t>{dev.images8[i].data(), width, height, width}, p.censusType,
-                        census[i], stream);
+        cuda::censusTransform(images8[i], p.censusType, census[i], stream);
       }
     }
     s.leftCensus = asConst(census[0]);
@@ -242,12 +259,15 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
                    /*keepNoCounterpart=*/mode == MatchMode::Fused, stream);
   }
   dev.mark(kChecked);
-  const DeviceImage<std::int16_t> filtered = denseImage<std::int16_t>(dev.disparity, width, height);
+  // The result straight into the caller's device memory, or into ours to be downloaded.
+  const DeviceImage<std::int16_t> filtered =
+      outputOnDevice ? DeviceImage<std::int16_t>{disparity.data, width, height, disparity.stride}
+                     : denseImage<std::int16_t>(dev.disparity, width, height);
   cuda::medianFilter(asConst(raw), p.medianSize, filtered, stream);
   dev.mark(kFiltered);
 
   // Downloads: the disparity, and what the core reads besides it.
-  downloadImage(asConst(filtered), disparity, stream);
+  if (!outputOnDevice) downloadImage(asConst(filtered), disparity, stream);
   support_.resize(width, height);
   if (s.useLidar) {
     downloadImage(asConst(support), support_.view(), stream);
@@ -276,6 +296,76 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
   timings_.selectDisparity = dev.ms(kAggregated, kSelected);
   timings_.leftRightCheck = dev.ms(kSelected, kChecked);
   timings_.medianFilter = dev.ms(kChecked, kFiltered);
+}
+
+namespace {
+
+template <typename T>
+ImageView<const T> downloaded(ImageView<const T> device, int width, int height, Image<T>& host) {
+  host.resize(width, height);
+  LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(host.data(), static_cast<std::size_t>(width) * sizeof(T), device.data,
+                                    static_cast<std::size_t>(device.stride) * sizeof(T),
+                                    static_cast<std::size_t>(width) * sizeof(T), static_cast<std::size_t>(height),
+                                    cudaMemcpyDeviceToHost));
+  return std::as_const(host).view();
+}
+
+// A gray image in device memory, copied into the host buffer of its depth.
+GrayImageView downloaded(const GrayImageView& device, Image<std::uint8_t>& host8, Image<std::uint16_t>& host16) {
+  if (device.empty()) return {};
+  if (!device.gray8.empty()) return downloaded(device.gray8, device.width(), device.height(), host8);
+  return downloaded(device.gray16, device.width(), device.height(), host16);
+}
+
+}  // namespace
+
+void CudaMatcher::runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
+                              MemorySpace disparitySpace) {
+  const int width = disparity.width;
+  const int height = disparity.height;
+  HostCopies& host = *hostCopies_;
+  // The LiDAR samples come back to be validated and bucketed by LidarPoints, which names a
+  // sample outside the image or behind the camera (12 bytes a point).
+  LidarPoints points;
+  if (mode != MatchMode::StereoOnly) {
+    host.samples.resize(frame.lidarCount);
+    LIDAR_SGM_CUDA_CHECK(cudaMemcpy(host.samples.data(), frame.lidar, frame.lidarCount * sizeof(LidarSample),
+                                    cudaMemcpyDeviceToHost));
+    points = LidarPoints(width, height, host.samples);
+  }
+  const LidarPoints* lidar = mode == MatchMode::StereoOnly ? nullptr : &points;
+  const bool outputOnDevice = disparitySpace == MemorySpace::Device;
+
+  if (params_.scale != 1.0f) {
+    // The half-scale resampling is the core's, on the host: match host copies.
+    const GrayImageView left = mode == MatchMode::LidarOnly ? GrayImageView()
+                                                            : downloaded(frame.left, host.left8, host.left16);
+    const GrayImageView right = downloaded(frame.right, host.right8, host.right16);
+    host.disparity.resize(width, height);
+    compute(left, right, lidar, host.disparity.view());
+    if (outputOnDevice) {
+      LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(disparity.data, static_cast<std::size_t>(disparity.stride) * sizeof(std::int16_t),
+                                        host.disparity.data(), static_cast<std::size_t>(width) * sizeof(std::int16_t),
+                                        static_cast<std::size_t>(width) * sizeof(std::int16_t),
+                                        static_cast<std::size_t>(height), cudaMemcpyHostToDevice));
+    } else {
+      for (int y = 0; y < height; ++y) {
+        std::copy(host.disparity.data() + static_cast<std::size_t>(y) * width,
+                  host.disparity.data() + static_cast<std::size_t>(y + 1) * width, disparity.row(y));
+      }
+    }
+    return;
+  }
+  runStages(params_, frame.left, frame.right, nullptr, 0, lidar, mode, disparity, /*inputsOnDevice=*/true,
+            outputOnDevice);
+  if (params_.confidence) {
+    // The confidence's core part (texture, LiDAR distance, local range) runs on the host.
+    ImageView<const std::int16_t> hostDisparity = disparity;
+    if (outputOnDevice) hostDisparity = downloaded(hostDisparity, width, height, host.disparity);
+    const GrayImageView left = mode == MatchMode::LidarOnly ? GrayImageView()
+                                                            : downloaded(frame.left, host.left8, host.left16);
+    computeConfidence(left, mode, hostDisparity);
+  }
 }
 
 }  // namespace cuda

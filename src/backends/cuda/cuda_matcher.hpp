@@ -22,13 +22,17 @@ class CudaMatcher final : public Matcher {
   void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
                        const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
                        ImageView<std::int16_t> disparity) override;
+  void runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
+                   MemorySpace disparitySpace) override;
 
  private:
   struct Device;  // device buffers, stream and events (no CUDA type in this header)
   void runStages(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
                  const GrayImageView* up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                 ImageView<std::int16_t> disparity);
+                 ImageView<std::int16_t> disparity, bool inputsOnDevice = false, bool outputOnDevice = false);
+  struct HostCopies;
   std::unique_ptr<Device> device_;
+  std::unique_ptr<HostCopies> hostCopies_;
 };
 
 /// "" when a CUDA device can run this build's kernels, else why not (no device, no driver ...).

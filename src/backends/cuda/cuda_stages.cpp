@@ -276,5 +276,14 @@ void leftRightDifference(ImageView<const std::int16_t> bestIndex, ImageView<cons
   toHost(out, difference);
 }
 
+DeviceMemory::DeviceMemory(std::size_t bytes) { LIDAR_SGM_CUDA_CHECK(cudaMalloc(&data_, bytes)); }
+DeviceMemory::~DeviceMemory() { cudaFree(data_); }
+void DeviceMemory::upload(const void* host, std::size_t bytes) {
+  LIDAR_SGM_CUDA_CHECK(cudaMemcpy(data_, host, bytes, cudaMemcpyHostToDevice));
+}
+void DeviceMemory::download(void* host, std::size_t bytes) const {
+  LIDAR_SGM_CUDA_CHECK(cudaMemcpy(host, data_, bytes, cudaMemcpyDeviceToHost));
+}
+
 }  // namespace cuda
 }  // namespace lidar_sgm

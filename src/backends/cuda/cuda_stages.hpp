@@ -9,6 +9,7 @@
 // recursion calls (matching_cost.cuh); aggregatePaths runs the recursion on a stored volume and
 // the sum of selection.cu.
 
+#include <cstddef>
 #include <cstdint>
 
 #include "backends/common/stages.hpp"
@@ -42,6 +43,21 @@ void peakRatioMargin(const AggregatedCostVolume& sum, ImageView<const std::int16
                      ImageView<std::uint8_t> margin, ImageView<std::uint16_t> bestCost);
 void leftRightDifference(ImageView<const std::int16_t> bestIndex, ImageView<const std::int16_t> rightIndex,
                          int minDisparity, ImageView<std::uint8_t> difference);
+
+/// Device memory for tests of Matcher::computeOnDevice, without CUDA headers in the test.
+class DeviceMemory {
+ public:
+  explicit DeviceMemory(std::size_t bytes);
+  ~DeviceMemory();
+  DeviceMemory(const DeviceMemory&) = delete;
+  DeviceMemory& operator=(const DeviceMemory&) = delete;
+  void* data() const { return data_; }
+  void upload(const void* host, std::size_t bytes);
+  void download(void* host, std::size_t bytes) const;
+
+ private:
+  void* data_ = nullptr;
+};
 
 }  // namespace cuda
 }  // namespace lidar_sgm
