@@ -136,16 +136,18 @@ bench() {
 # libsgm_config.h is generated from its .in as libSGM's CMake would (static, no OpenCV wrapper).
 libsgm_build() {
   local src=$build/libsgm/src obj=$build/libsgm/obj
+  [[ -f "$prep/libSGM/include/libsgm_config.h.in" ]] || { echo "no libSGM sources in $prep/libSGM"; return 1; }
+  command -v nvcc >/dev/null || { echo "no nvcc"; return 1; }
   rm -rf "$build/libsgm"
-  mkdir -p "$src" "$obj"
-  cp -r "$prep/libSGM/." "$src/"
+  mkdir -p "$src" "$obj" && cp -r "$prep/libSGM/." "$src/" || return 1
   local version
   version=$(sed -n 's/.*project(libSGM VERSION \([0-9.]*\)).*/\1/p' "$src/CMakeLists.txt" | head -n 1)
   [[ -n "$version" ]] || version=0.0.0
   IFS=. read -r major minor patch <<< "$version"
   sed -e 's|^#cmakedefine \(.*\)$|/* #undef \1 */|' -e "s/@libSGM_VERSION@/$version/" \
     -e "s/@libSGM_VERSION_MAJOR@/$major/" -e "s/@libSGM_VERSION_MINOR@/${minor:-0}/" \
-    -e "s/@libSGM_VERSION_PATCH@/${patch:-0}/" "$src/include/libsgm_config.h.in" > "$src/include/libsgm_config.h"
+    -e "s/@libSGM_VERSION_PATCH@/${patch:-0}/" "$src/include/libsgm_config.h.in" > "$src/include/libsgm_config.h" ||
+    return 1
   local flags=(-std=c++17 -O3 -arch=sm_90 -I"$src/include")
   # shellcheck disable=SC2016  # the single-quoted script expands in the child shell
   printf '%s\n' "$src"/src/*.cu "$src"/src/*.cpp "$root/scripts/gpu_check/libsgm_bench.cpp" |
