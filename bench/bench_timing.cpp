@@ -33,7 +33,7 @@ double median(std::vector<double> values) {
 }
 
 Measurement measureFrames(FrameRunner& runner, MatchMode mode, int runs, int warmups) {
-  std::vector<double> frameMs, rescaleMs;
+  std::vector<double> frameMs, rescaleMs, transfers, kernel;
   std::vector<std::vector<double>> stageMs(stageColumns().size());
   for (int i = 0; i < warmups + runs; ++i) {
     const double ms = wallClockMs([&] { runner.run(); });
@@ -44,6 +44,8 @@ Measurement measureFrames(FrameRunner& runner, MatchMode mode, int runs, int war
     if (i < warmups) continue;
     frameMs.push_back(ms);
     rescaleMs.push_back(runner.rescaleMs());
+    transfers.push_back(transfersMs(runner.stages()));
+    kernel.push_back(runner.stages().total() - transfers.back());
     for (std::size_t s = 0; s < stageColumns().size(); ++s) {
       stageMs[s].push_back(runner.stages().*stageColumns()[s].member);
     }
@@ -51,6 +53,8 @@ Measurement measureFrames(FrameRunner& runner, MatchMode mode, int runs, int war
   Measurement m;
   m.frameMs = median(frameMs);
   m.rescaleMs = median(rescaleMs);
+  m.transfersMs = median(transfers);
+  m.kernelMs = median(kernel);
   for (std::size_t s = 0; s < stageColumns().size(); ++s) m.stages.*stageColumns()[s].member = median(stageMs[s]);
   return m;
 }

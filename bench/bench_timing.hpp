@@ -2,6 +2,8 @@
 // Timing: the median of many frames after warm-up ones, per frame and per stage.
 
 #include <chrono>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "bench_frame.hpp"
@@ -17,7 +19,28 @@ struct Measurement {
   double frameMs = 0;   ///< wall clock around one frame (FrameRunner::run): what a caller waits for
   StageTimings stages;  ///< Matcher::lastTimings()
   double rescaleMs = 0; ///< Matcher::lastRescaleMs(): half scale only, outside the stages
+  double transfersMs = 0;  ///< host<->device copies (transfersMs() below); 0 on CPU backends
+  double kernelMs = 0;     ///< stages without the copies: StageTimings::total() - transfers
 };
+
+/// Whether StageTimings has the field `transfers` (the CUDA backend's host<->device copy time
+/// in ms, part of total()); until it has, every frame's copies count as 0 ms.
+template <typename T, typename = void>
+struct HasTransfers : std::false_type {};
+template <typename T>
+struct HasTransfers<T, std::void_t<decltype(std::declval<const T&>().transfers)>> : std::true_type {};
+
+/// The host<->device copy time of a frame [ms]. Once StageTimings::transfers is on main, this
+/// becomes `return timings.transfers;` (and HasTransfers goes).
+template <typename T>
+double transfersMs(const T& timings) {
+  if constexpr (HasTransfers<T>::value) {
+    return timings.transfers;
+  } else {
+    static_cast<void>(timings);
+    return 0.0;
+  }
+}
 
 /// A stage column of the table, in the order the stages run.
 struct StageColumn {

@@ -2,9 +2,12 @@
 //
 // By default the KITTI 2015 pair 000000_10 with the GT-sampled 64-beam LiDAR of protocol P1;
 // -left/-right/-lidar for other files; -synthetic for the built-in frame (the only input when
-// the bench is built without lidar_sgm::io). Prints a settings block, the median of -runs frames
-// after 2 warm-up frames per configuration as a markdown table for BENCHMARK.md, the peak memory
-// of the fused frame, OpenCV's SGBM on the same pair, and with -growth the cost per W*H*D.
+// the bench is built without lidar_sgm::io); -frame_dir for a frame saved as PGM files (which
+// -export_frame writes), the real frame on a machine without OpenCV. Prints a settings block,
+// the median of -runs frames after -warmups frames per configuration as a markdown table for
+// BENCHMARK.md and one "result ..." line each for scripts, the peak memory of the fused frame,
+// OpenCV's SGBM on the same pair, and with -growth the cost per W*H*D.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +25,7 @@
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
 #include "lidar_sgm/core/matcher.hpp"
+#include "pgm_frame.hpp"
 
 #ifdef LIDAR_SGM_BENCH_HAVE_IO
 #include "bench_frame_io.hpp"
@@ -34,15 +38,16 @@ namespace lidar_sgm {
 namespace bench {
 namespace {
 
-// Two untimed frames first: the first allocates the matcher's buffers and faults in their pages,
-// the second warms the caches; a sequence of frames never pays either again.
-constexpr int kWarmups = 2;
+// Two untimed frames first by default: the first allocates the matcher's buffers and faults in
+// their pages, the second warms the caches; a sequence of frames never pays either again.
+constexpr int kDefaultWarmups = 2;
 const char* kKittiFrame = "000000_10";
 
 struct Options {
   std::string backend = "auto";
   int threads = 0;
   int runs = 20;
+  int warmups = kDefaultWarmups;
   int numDisparities = 128;
   int paths = 4;
   std::vector<std::string> configs;  ///< keys of the configurations to run; empty: all
@@ -51,6 +56,8 @@ struct Options {
   int height = 375;
   std::string dataRoot;  ///< empty: $LIDAR_SGM_DATA, else the ../shared/data found at configure time
   std::string left, right, lidar;
+  std::string frameDir;     ///< a frame saved as PGM files (pgm_frame.hpp)
+  std::string exportFrame;  ///< write the frame there as PGM files instead of timing it
   bool growth = false;
 };
 
@@ -60,11 +67,16 @@ void printUsage(const char* program) {
       "input (default: KITTI 2015 %s with the LiDAR of protocol P1, from the shared data):\n"
       "  -data ROOT              shared data folder (default $LIDAR_SGM_DATA, else %s)\n"
       "  -left L -right R -lidar D   a rectified 8-bit pair and a KITTI sparse disparity PNG\n"
+      "  -frame_dir DIR          DIR/left.pgm, right.pgm (8-bit P5), lidar16.pgm (16-bit P5, x16\n"
+      "                          disparity, 0 = no point), as -export_frame writes them; needs no OpenCV\n"
       "  -synthetic [-width 1242 -height 375]   the built-in synthetic frame\n"
       "options:\n"
+      "  -export_frame DIR       write the input frame to DIR as -frame_dir reads it, check that it\n"
+      "                          reads back identical, and time nothing\n"
       "  -backend auto|cpu|cpu_ref|cuda   (default auto)\n"
       "  -threads N              worker threads, 0 = hardware threads (default 0)\n"
       "  -runs N                 timed frames per configuration, median reported (default 20)\n"
+      "  -warmups N              untimed frames before them (default %d)\n"
       "  -configs LIST           comma list of fused,stereo,lidar,paths8,half (default all)\n"
       "  -num_disparities N      (default 128)\n"
       "  -paths 4|8              SGM paths of every configuration but paths8 (default 4)\n"
@@ -72,7 +84,7 @@ void printUsage(const char* program) {
       "  -h, --help              this help\n"
       "  --version               the tool's name and version\n"
       "Every option also takes the GNU spelling: --runs 5, --runs=5.\n",
-      program, kKittiFrame, LIDAR_SGM_SHARED_DATA);
+      program, kKittiFrame, LIDAR_SGM_SHARED_DATA, kDefaultWarmups);
 }
 
 std::vector<std::string> splitCommas(const std::string& list) {
@@ -88,8 +100,8 @@ std::vector<std::string> splitCommas(const std::string& list) {
 /// The options the bench takes (-h and --version are every tool's).
 apps::Arguments parseArguments(int argc, char** argv) {
   return apps::Arguments(argc, argv,
-                         {"backend", "threads", "runs", "configs", "num_disparities", "paths", "width", "height",
-                          "data", "left", "right", "lidar"},
+                         {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
+                          "height", "data", "left", "right", "lidar", "frame_dir", "export_frame"},
                          {"synthetic", "growth"});
 }
 
@@ -101,6 +113,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.backend = args.text("backend", o.backend);
   o.threads = args.integer("threads", o.threads);
   o.runs = args.integer("runs", o.runs);
+  o.warmups = args.integer("warmups", o.warmups);
   o.configs = splitCommas(args.text("configs", ""));
   o.numDisparities = args.integer("num_disparities", o.numDisparities);
   o.paths = args.integer("paths", o.paths);
@@ -110,15 +123,17 @@ Options optionsFrom(const apps::Arguments& args) {
   o.left = args.text("left", o.left);
   o.right = args.text("right", o.right);
   o.lidar = args.text("lidar", o.lidar);
+  o.frameDir = args.text("frame_dir", o.frameDir);
+  o.exportFrame = args.text("export_frame", o.exportFrame);
   o.synthetic = args.has("synthetic");
   o.growth = args.has("growth");
   if (o.runs < 1) throw std::invalid_argument("-runs must be at least 1");
+  if (o.warmups < 0) throw std::invalid_argument("-warmups must be at least 0");
   if (o.width < 16 || o.height < 16) throw std::invalid_argument("-width and -height must be at least 16");
   const int filesGiven = !o.left.empty() + !o.right.empty() + !o.lidar.empty();
   if (filesGiven != 0 && filesGiven != 3) throw std::invalid_argument("-left, -right and -lidar go together");
-  if (filesGiven == 3 && o.synthetic) {
-    throw std::invalid_argument("-synthetic and -left/-right/-lidar exclude each other");
-  }
+  const int inputsGiven = (filesGiven == 3) + o.synthetic + !o.frameDir.empty();
+  if (inputsGiven > 1) throw std::invalid_argument("-synthetic, -left/-right/-lidar and -frame_dir exclude each other");
   return o;
 }
 
@@ -133,13 +148,14 @@ std::string dataRoot(const Options& o) {
 
 Frame loadFrame(const Options& o) {
   if (o.synthetic) return makeSyntheticFrame(o.width, o.height);
+  if (!o.frameDir.empty()) return readPgmFrame(o.frameDir);
 #ifdef LIDAR_SGM_BENCH_HAVE_IO
   if (!o.left.empty()) return loadFileFrame(o.left, o.right, o.lidar);
   return loadKittiP1Frame(dataRoot(o), kKittiFrame);
 #else
   throw std::runtime_error(
       "this lidar_sgm_bench was built without lidar_sgm::io (OpenCV not found), so it cannot read frames; "
-      "run it with -synthetic");
+      "run it with -frame_dir DIR (a frame another build wrote with -export_frame) or -synthetic");
 #endif
 }
 
@@ -228,7 +244,7 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
   std::printf("  paths:        %d (8 in the \"fused, 8 paths\" row)\n", base.paths);
   std::printf("  mode:         ");
   for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());
-  std::printf("\n  timing:       median of %d frames after %d warm-up frames, per configuration\n", o.runs, kWarmups);
+  std::printf("\n  timing:       median of %d frames after %d warm-up frames, per configuration\n", o.runs, o.warmups);
 }
 
 struct Row {
@@ -238,19 +254,29 @@ struct Row {
 };
 
 void printTable(const std::vector<Row>& rows) {
-  std::printf("\n| config | frame ms |");
+  std::printf("\n| config | frame ms | kernel ms | transfers ms |");
   for (const StageColumn& c : stageColumns()) std::printf(" %s |", c.name);
-  std::printf(" rescale |\n| --- | ---: |");
+  std::printf(" rescale |\n| --- | ---: | ---: | ---: |");
   for (std::size_t i = 0; i < stageColumns().size(); ++i) std::printf(" ---: |");
   std::printf(" ---: |\n");
   for (const Row& r : rows) {
-    std::printf("| %s | %s |", r.label.c_str(), ms(r.m.frameMs).c_str());
+    std::printf("| %s | %s | %s | %s |", r.label.c_str(), ms(r.m.frameMs).c_str(), ms(r.m.kernelMs).c_str(),
+                ms(r.m.transfersMs).c_str());
     for (const StageColumn& c : stageColumns()) std::printf(" %s |", ms(r.m.stages.*c.member).c_str());
     std::printf(" %s |\n", r.halfScale ? ms(r.m.rescaleMs).c_str() : "-");
   }
-  std::printf("\nStage columns: Matcher::lastTimings() in ms, medians; frame ms: wall clock around one frame (see timed). "
-              "rescale: Matcher::lastRescaleMs(), the 2x2 downscale of the inputs and the upscale of the "
-              "disparity at half scale (in frame ms, not in the stages).\n");
+  std::printf("\nStage columns: Matcher::lastTimings() in ms, medians; frame ms: wall clock around one frame (see timed), "
+              "host<->device copies included. kernel ms: the stages without the copies (total - transfers). "
+              "transfers ms: the copies (0 on CPU backends). rescale: Matcher::lastRescaleMs(), the 2x2 downscale of "
+              "the inputs and the upscale of the disparity at half scale (in frame ms, not in the stages).\n");
+}
+
+/// One line per configuration for scripts (scripts/gpu_check.sh reads them): key=value, ms.
+void printResultLine(const Config& c, Backend backend, const Measurement& m, int runs) {
+  std::printf("result config=%s backend=%s paths=%d scale=%g disparities=%d runs=%d kernel_ms=%.3f transfers_ms=%.3f "
+              "frame_ms=%.3f\n",
+              c.key.c_str(), toString(backend).c_str(), c.params.paths, static_cast<double>(c.params.scale),
+              c.params.numDisparities, runs, m.kernelMs, m.transfersMs, m.frameMs);
 }
 
 #ifdef LIDAR_SGM_BENCH_HAVE_OPENCV
@@ -269,8 +295,8 @@ void compareWithOpenCv(const Options& o, const Frame& frame, Backend backend, co
   settings.numDisparities = base.numDisparities;  // the same search range as ours
   const int threads = effectiveThreads(base);
   std::printf("\nOpenCV: %s; %d threads\n", describe(settings).c_str(), threads);
-  const double sgbmMs = timeOpenCvSgbm(frame, settings, threads, o.runs, kWarmups);
-  std::printf("  frame ms: %s (median of %d after %d warm-up frames)\n", ms(sgbmMs).c_str(), o.runs, kWarmups);
+  const double sgbmMs = timeOpenCvSgbm(frame, settings, threads, o.runs, o.warmups);
+  std::printf("  frame ms: %s (median of %d after %d warm-up frames)\n", ms(sgbmMs).c_str(), o.runs, o.warmups);
   for (const char* label : {"stereo-only", "fused"}) {
     if (const std::optional<double> ours = frameMsOf(rows, label)) {
       std::printf("  ours / OpenCV, %s, separate medians: %.2f (%s ms / %s ms; < 1: ours is faster)\n", label,
@@ -280,7 +306,7 @@ void compareWithOpenCv(const Options& o, const Frame& frame, Backend backend, co
   std::printf("  paired, %d frames each, ours then OpenCV in turn (median ratio [min, max]):\n", o.runs);
   for (const MatchMode mode : {MatchMode::StereoOnly, MatchMode::Fused}) {
     FrameRunner runner(backend, base, frame, mode);
-    const PairedTiming t = pairWithOpenCvSgbm(frame, settings, threads, [&] { runner.run(); }, o.runs, kWarmups);
+    const PairedTiming t = pairWithOpenCvSgbm(frame, settings, threads, [&] { runner.run(); }, o.runs, o.warmups);
     if (runner.lastMode() != mode) throw std::logic_error("the paired run matched in the wrong mode");
     std::printf("  ours / OpenCV, %-11s: %.2f [%.2f, %.2f] (ours %s ms, OpenCV %s ms)\n", toString(mode).c_str(),
                 t.ratio, t.ratioMin, t.ratioMax, ms(t.oursMs).c_str(), ms(t.sgbmMs).c_str());
@@ -303,7 +329,7 @@ Frame frameAtSize(const Frame& frame, int width, int height) {
 
 void printGrowth(const Options& o, const Frame& frame, Backend backend, const Parameters& base) {
   std::printf("\nGrowth: fused, %s, median of %d frames after %d warm-up; %s\n", toString(backend).c_str(), o.runs,
-              kWarmups, frame.synthetic ? "synthetic frames made at each size" : "the pair resized (INTER_AREA down, "
+              o.warmups, frame.synthetic ? "synthetic frames made at each size" : "the pair resized (INTER_AREA down, "
               "INTER_LINEAR up), the LiDAR points moved and their disparities scaled with it");
   std::printf("\n| size | disparities | frame ms | ns per W*H*D |\n| --- | ---: | ---: | ---: |\n");
   for (const double factor : {0.5, 1.0, 2.0}) {
@@ -314,7 +340,7 @@ void printGrowth(const Options& o, const Frame& frame, Backend backend, const Pa
       Parameters params = base;
       params.numDisparities = disparities;
       FrameRunner runner(backend, params, sized, MatchMode::Fused);
-      const Measurement m = measureFrames(runner, MatchMode::Fused, o.runs, kWarmups);
+      const Measurement m = measureFrames(runner, MatchMode::Fused, o.runs, o.warmups);
       const double cells = static_cast<double>(width) * height * disparities;
       std::printf("| %s | %d | %s | %.3f |\n", sizeText(width, height).c_str(), disparities, ms(m.frameMs).c_str(),
                   m.frameMs * 1e6 / cells);
@@ -325,8 +351,39 @@ void printGrowth(const Options& o, const Frame& frame, Backend backend, const Pa
 
 // ---------------------------------------------------------------------------------------------
 
+/// Whether `a` and `b` hold the same pixels and the same LiDAR points.
+bool sameFrame(const Frame& a, const Frame& b) {
+  const auto samePixels = [](const Image<std::uint8_t>& x, const Image<std::uint8_t>& y) {
+    return x.width() == y.width() && x.height() == y.height() &&
+           std::equal(x.data(), x.data() + static_cast<std::size_t>(x.width()) * x.height(), y.data());
+  };
+  if (!samePixels(a.left, b.left) || !samePixels(a.right, b.right)) return false;
+  if (a.lidar.width() != b.lidar.width() || a.lidar.height() != b.lidar.height() || a.lidar.size() != b.lidar.size()) {
+    return false;
+  }
+  for (int y = 0; y < a.lidar.height(); ++y) {
+    for (int x = 0; x < a.lidar.width(); ++x) {
+      if (!std::equal(a.lidar.begin(x, y), a.lidar.end(x, y), b.lidar.begin(x, y), b.lidar.end(x, y))) return false;
+    }
+  }
+  return true;
+}
+
+/// -export_frame: the input frame as PGM files, read back and compared, so that a frame timed
+/// elsewhere from these files is exactly this one.
+int exportFrame(const Options& o, const Frame& frame) {
+  writePgmFrame(frame, o.exportFrame);
+  if (!sameFrame(frame, readPgmFrame(o.exportFrame))) {
+    throw std::logic_error(o.exportFrame + ": the frame written does not read back identical");
+  }
+  std::printf("wrote %s (%s, %zu LiDAR points) to %s [done, read back identical]\n", frame.source.c_str(),
+              sizeText(frame.width(), frame.height()).c_str(), frame.lidar.size(), o.exportFrame.c_str());
+  return 0;
+}
+
 int run(const Options& o) {
   const Frame frame = loadFrame(o);
+  if (!o.exportFrame.empty()) return exportFrame(o, frame);
   const Backend backend = resolve(backendFromString(o.backend));
   if (!isAvailable(backend)) {
     throw std::runtime_error("backend " + toString(backend) + " is not built into this library");
@@ -345,8 +402,9 @@ int run(const Options& o) {
   std::vector<Row> rows;
   for (const Config& c : configs) {
     FrameRunner runner(backend, c.params, frame, c.mode);
-    const Measurement m = measureFrames(runner, c.mode, o.runs, kWarmups);
+    const Measurement m = measureFrames(runner, c.mode, o.runs, o.warmups);
     std::printf("  %-40s %s ms\n", c.label.c_str(), ms(m.frameMs).c_str());
+    printResultLine(c, backend, m, o.runs);
     if (c.key == "fused") {
       // Printed before any other configuration runs, so it is the fused full-size frame's.
       std::printf("  memory: peak RSS after the fused frames: %.1f MiB\n", peakRssMiB());
