@@ -23,24 +23,8 @@ struct Measurement {
   double kernelMs = 0;     ///< stages without the copies: StageTimings::total() - transfers
 };
 
-/// Whether StageTimings has the field `transfers` (the CUDA backend's host<->device copy time
-/// in ms, part of total()); until it has, every frame's copies count as 0 ms.
-template <typename T, typename = void>
-struct HasTransfers : std::false_type {};
-template <typename T>
-struct HasTransfers<T, std::void_t<decltype(std::declval<const T&>().transfers)>> : std::true_type {};
-
-/// The host<->device copy time of a frame [ms]. Once StageTimings::transfers is on main, this
-/// becomes `return timings.transfers;` (and HasTransfers goes).
-template <typename T>
-double transfersMs(const T& timings) {
-  if constexpr (HasTransfers<T>::value) {
-    return timings.transfers;
-  } else {
-    static_cast<void>(timings);
-    return 0.0;
-  }
-}
+/// The host<->device copy time of a frame [ms] (StageTimings::transfers; 0 on CPU backends).
+inline double transfersMs(const StageTimings& timings) { return timings.transfers; }
 
 /// A stage column of the table, in the order the stages run.
 struct StageColumn {

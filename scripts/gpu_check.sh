@@ -17,7 +17,7 @@
 #   GPU_CHECK_RUNS=100       timed frames per configuration (after GPU_CHECK_WARMUPS=10)
 #   GPU_CHECK_JOBS=16        build jobs
 #   GPU_CHECK_BUILD=build-gpu-check          the build folder
-#   GPU_CHECK_TEST_FILTER='*cuda*:*Cuda*:*Reuse*:*Registry*'   test_backends' filter
+#   GPU_CHECK_TEST_FILTER='*cuda*:*Cuda*:*Reuse*:*Registry*:*DeviceFrames*'   test_backends' filter
 #   GPU_CHECK_CMAKE_ARGS     more configure arguments (e.g. to hide installed packages)
 #   GPU_CHECK_TOTAL_S=450    the whole script's budget: a step gets what is left of it
 set -uo pipefail
@@ -30,7 +30,7 @@ runs=${GPU_CHECK_RUNS:-100}
 warmups=${GPU_CHECK_WARMUPS:-10}
 jobs=${GPU_CHECK_JOBS:-16}
 build=${GPU_CHECK_BUILD:-build-gpu-check}
-test_filter=${GPU_CHECK_TEST_FILTER:-'*cuda*:*Cuda*:*Reuse*:*Registry*'}
+test_filter=${GPU_CHECK_TEST_FILTER:-'*cuda*:*Cuda*:*Reuse*:*Registry*:*DeviceFrames*'}
 prep=$root/.gpu_check
 frame=$prep/frame
 deadline=$((SECONDS + ${GPU_CHECK_TOTAL_S:-450}))

@@ -248,7 +248,7 @@ void Matcher::dispatch(const GrayImageView& left, const GrayImageView& right, co
   } else {
     run(matched, left, right, lidar, mode, disparity);
   }
-  if (params_.confidence) computeConfidence(left, mode, disparity);
+  if (params_.confidence && !computesConfidence()) computeConfidence(left, mode, disparity);
 }
 
 void Matcher::computeConfidence(const GrayImageView& left, MatchMode mode, ImageView<const std::int16_t> disparity) {

@@ -540,6 +540,14 @@ TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
     EXPECT_TRUE(sameImages(reference->confidenceInputs().leftRightDifference,
                            backend->confidenceInputs().leftRightDifference))
         << "leftRightDifference";
+    // The core's inputs: computed by the core for the CPU backends, on the device by cuda.
+    EXPECT_TRUE(sameImages(reference->confidenceInputs().lidarDistance, backend->confidenceInputs().lidarDistance))
+        << "lidarDistance";
+    EXPECT_TRUE(sameImages(reference->confidenceInputs().texture, backend->confidenceInputs().texture)) << "texture";
+    EXPECT_TRUE(sameImages(reference->confidenceInputs().saturated, backend->confidenceInputs().saturated))
+        << "saturated";
+    EXPECT_TRUE(sameImages(reference->confidenceInputs().disparityRange, backend->confidenceInputs().disparityRange))
+        << "disparityRange";
   } else {
     EXPECT_TRUE(backend->confidence().empty());
   }

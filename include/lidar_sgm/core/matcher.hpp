@@ -200,6 +200,9 @@ class Matcher {
   /// std::runtime_error: only a GPU backend takes device memory.
   virtual void runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
                            MemorySpace disparitySpace);
+  /// Whether run() computes the whole confidence itself (confidence_ and every input at the
+  /// matched size), so that the core does not: the cuda backend, which keeps the frame on the GPU.
+  virtual bool computesConfidence() const { return false; }
   /// The core's part of the confidence, after the backend ran on `left` (host, matched size).
   void computeConfidence(const GrayImageView& left, MatchMode mode, ImageView<const std::int16_t> disparity);
   void recordFrame(MatchMode mode, bool upCamera) {
@@ -213,6 +216,7 @@ class Matcher {
   /// The backend fills margin and leftRightDifference (not in LiDAR-only mode) when
   /// params.confidence is set; the core the rest.
   ConfidenceInputs confidenceInputs_;
+  Image<std::uint8_t> confidence_;
 
  private:
   /// Runs the backend on (possibly half-scale) inputs.
@@ -221,7 +225,6 @@ class Matcher {
   void computeAtHalfScale(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
                           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
 
-  Image<std::uint8_t> confidence_;
   Image<std::uint8_t> halfConfidence_;
   std::shared_ptr<ConfidenceScratch> scratch_;  ///< row buffers of the core's confidence inputs
   MatchMode lastMode_ = MatchMode::StereoOnly;

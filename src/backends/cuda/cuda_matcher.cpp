@@ -16,6 +16,7 @@
 #include "backends/cuda/device_buffer.hpp"
 #include "backends/cuda/kernels.hpp"
 #include "backends/cuda/transfers.hpp"
+#include "lidar_sgm/core/confidence.hpp"
 
 namespace lidar_sgm {
 
@@ -41,7 +42,19 @@ std::string cudaUnavailableReason() {
 namespace {
 
 // The points in time between which the stages of a frame ran, recorded on the stream.
-enum Mark { kStart, kUploaded, kCensus, kLidar, kAggregated, kSelected, kChecked, kFiltered, kDownloaded, kMarks };
+enum Mark {
+  kStart,
+  kUploaded,
+  kCensus,
+  kLidar,
+  kAggregated,
+  kSelected,
+  kChecked,
+  kFiltered,
+  kConfidence,
+  kDownloaded,
+  kMarks
+};
 
 }  // namespace
 
@@ -67,6 +80,14 @@ struct CudaMatcher::Device {
   DeviceBuffer<std::uint8_t> margin;
   DeviceBuffer<std::uint16_t> bestCost;
   DeviceBuffer<std::uint8_t> leftRightDifference;
+  // The confidence's core part (confidence.cu) and its logistic table.
+  DeviceBuffer<std::uint8_t> verticalDistance;
+  DeviceBuffer<std::uint8_t> lidarDistance;
+  DeviceBuffer<std::uint8_t> texture;
+  DeviceBuffer<std::uint8_t> saturated;
+  DeviceBuffer<std::uint8_t> disparityRange;
+  DeviceBuffer<std::uint8_t> confidence;
+  DeviceBuffer<std::uint8_t> sigmoid;
   LidarCostTable hostTable;
   float tableSigma = 0;
   int tableCap = -1;
@@ -75,6 +96,11 @@ struct CudaMatcher::Device {
   Device() {
     LIDAR_SGM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
     for (cudaEvent_t& e : events) LIDAR_SGM_CUDA_CHECK(cudaEventCreate(&e));
+    // The core's logistic curve, entry i at logit (i - 1024) / 64 (confidenceFromLogit256).
+    std::vector<std::uint8_t> curve(2048);
+    for (int i = 0; i < 2048; ++i) curve[static_cast<std::size_t>(i)] = confidenceFromLogit256(4 * (i - 1024));
+    uploadVector(curve, sigmoid, stream);
+    LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(stream));
   }
   ~Device() {
     for (cudaEvent_t e : events) {
@@ -266,6 +292,34 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
   cuda::medianFilter(asConst(raw), p.medianSize, filtered, stream);
   dev.mark(kFiltered);
 
+  // The confidence's core part, as Matcher::computeConfidence does it on the host.
+  const DeviceImage<std::uint8_t> distance = denseImage<std::uint8_t>(dev.lidarDistance, width, height);
+  const DeviceImage<std::uint8_t> texture = denseImage<std::uint8_t>(dev.texture, width, height);
+  const DeviceImage<std::uint8_t> saturated = denseImage<std::uint8_t>(dev.saturated, width, height);
+  const DeviceImage<std::uint8_t> range = denseImage<std::uint8_t>(dev.disparityRange, width, height);
+  const DeviceImage<std::uint8_t> confidence = denseImage<std::uint8_t>(dev.confidence, width, height);
+  if (p.confidence) {
+    if (!s.useLidar) LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(support.data, 0, pixels, stream));
+    cuda::lidarDistance(asConst(support), denseImage<std::uint8_t>(dev.verticalDistance, width, height), distance,
+                        stream);
+    if (!s.useCamera) {
+      // LiDAR-only: no image, so no texture; no right view, so no counterpart.
+      LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(texture.data, 0, pixels, stream));
+      LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(saturated.data, 0, pixels, stream));
+      LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(difference.data, kNoCounterpartDifference, pixels, stream));
+    } else if (sixteen) {
+      cuda::textureAndSaturation(images16[0], texture, saturated, stream);
+    } else {
+      cuda::textureAndSaturation(images8[0], texture, saturated, stream);
+    }
+    cuda::disparityRange(asConst(filtered), range, stream);
+    const ConfidenceImages inputs{asConst(margin),   asConst(bestCost),  asConst(difference), asConst(distance),
+                                  asConst(texture),  asConst(saturated), asConst(range)};
+    cuda::combineConfidence(inputs, confidenceModel(mode), mode == MatchMode::LidarOnly, p.paths, dev.sigmoid.data(),
+                            asConst(filtered), confidence, stream);
+  }
+  dev.mark(kConfidence);
+
   // Downloads: the disparity, and what the core reads besides it.
   if (!outputOnDevice) downloadImage(asConst(filtered), disparity, stream);
   support_.resize(width, height);
@@ -275,27 +329,34 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
     support_.fill(0);
   }
   if (p.confidence) {
-    confidenceInputs_.margin.resize(width, height);
-    confidenceInputs_.bestCost.resize(width, height);
-    downloadImage(asConst(margin), confidenceInputs_.margin.view(), stream);
-    downloadImage(asConst(bestCost), confidenceInputs_.bestCost.view(), stream);
-  }
-  if (confidenceLr) {
-    confidenceInputs_.leftRightDifference.resize(width, height);
-    downloadImage(asConst(difference), confidenceInputs_.leftRightDifference.view(), stream);
+    ConfidenceInputs& in = confidenceInputs_;
+    const auto download = [&](DeviceImage<std::uint8_t> from, Image<std::uint8_t>& to) {
+      to.resize(width, height);
+      downloadImage(asConst(from), to.view(), stream);
+    };
+    download(margin, in.margin);
+    in.bestCost.resize(width, height);
+    downloadImage(asConst(bestCost), in.bestCost.view(), stream);
+    download(difference, in.leftRightDifference);
+    download(distance, in.lidarDistance);
+    download(texture, in.texture);
+    download(saturated, in.saturated);
+    download(range, in.disparityRange);
+    download(confidence, confidence_);
   }
   dev.mark(kDownloaded);
   LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(stream));
 
   // Kernel time per stage (CUDA events). The costs are computed inside the aggregation, so
   // censusCost, lidarCost's volume and fuseCosts have no time of their own.
-  timings_.transfers = dev.ms(kStart, kUploaded) + dev.ms(kFiltered, kDownloaded);
+  timings_.transfers = dev.ms(kStart, kUploaded) + dev.ms(kConfidence, kDownloaded);
   timings_.census = dev.ms(kUploaded, kCensus);
   timings_.lidarCost = dev.ms(kCensus, kLidar);
   timings_.aggregatePaths = dev.ms(kLidar, kAggregated);
   timings_.selectDisparity = dev.ms(kAggregated, kSelected);
   timings_.leftRightCheck = dev.ms(kSelected, kChecked);
   timings_.medianFilter = dev.ms(kChecked, kFiltered);
+  timings_.confidence = dev.ms(kFiltered, kConfidence);
 }
 
 namespace {
@@ -356,16 +417,9 @@ void CudaMatcher::runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageVie
     }
     return;
   }
+  // The confidence, too, is computed on the device (computesConfidence()).
   runStages(params_, frame.left, frame.right, nullptr, 0, lidar, mode, disparity, /*inputsOnDevice=*/true,
             outputOnDevice);
-  if (params_.confidence) {
-    // The confidence's core part (texture, LiDAR distance, local range) runs on the host.
-    ImageView<const std::int16_t> hostDisparity = disparity;
-    if (outputOnDevice) hostDisparity = downloaded(hostDisparity, width, height, host.disparity);
-    const GrayImageView left = mode == MatchMode::LidarOnly ? GrayImageView()
-                                                            : downloaded(frame.left, host.left8, host.left16);
-    computeConfidence(left, mode, hostDisparity);
-  }
 }
 
 }  // namespace cuda

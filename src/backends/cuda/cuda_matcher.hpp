@@ -17,6 +17,8 @@ class CudaMatcher final : public Matcher {
   Backend backend() const override { return Backend::Cuda; }
 
  protected:
+  /// The confidence's core part runs on the device too (confidence.cu).
+  bool computesConfidence() const override { return true; }
   void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
            MatchMode mode, ImageView<std::int16_t> disparity) override;
   void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,

@@ -8,6 +8,7 @@
 #include <cuda_runtime_api.h>
 
 #include "backends/cuda/device_types.hpp"
+#include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/parameters.hpp"
 
 namespace lidar_sgm {
@@ -62,6 +63,31 @@ void peakRatioMargin(DeviceVolume<const std::uint16_t> sum, DeviceImage<const st
                      DeviceImage<std::uint8_t> margin, DeviceImage<std::uint16_t> bestCost, cudaStream_t stream);
 void leftRightDifference(DeviceImage<const std::int16_t> bestIndex, DeviceImage<const std::int16_t> rightIndex,
                          int minDisparity, DeviceImage<std::uint8_t> difference, cudaStream_t stream);
+
+// confidence.cu: the core's part of the confidence (core/confidence_inputs.hpp) on the device.
+/// `vertical` is scratch of the support's size.
+void lidarDistance(DeviceImage<const std::uint8_t> support, DeviceImage<std::uint8_t> vertical,
+                   DeviceImage<std::uint8_t> distance, cudaStream_t stream);
+void textureAndSaturation(DeviceImage<const std::uint8_t> image, DeviceImage<std::uint8_t> texture,
+                          DeviceImage<std::uint8_t> saturated, cudaStream_t stream);
+void textureAndSaturation(DeviceImage<const std::uint16_t> image, DeviceImage<std::uint8_t> texture,
+                          DeviceImage<std::uint8_t> saturated, cudaStream_t stream);
+void disparityRange(DeviceImage<const std::int16_t> disparity, DeviceImage<std::uint8_t> range, cudaStream_t stream);
+/// The seven inputs of a frame, on the device.
+struct ConfidenceImages {
+  DeviceImage<const std::uint8_t> margin;
+  DeviceImage<const std::uint16_t> bestCost;
+  DeviceImage<const std::uint8_t> leftRightDifference;
+  DeviceImage<const std::uint8_t> lidarDistance;
+  DeviceImage<const std::uint8_t> texture;
+  DeviceImage<const std::uint8_t> saturated;
+  DeviceImage<const std::uint8_t> disparityRange;
+};
+/// The logistic model of core/confidence.hpp; `sigmoidTable`: 2048 bytes, entry i =
+/// confidenceFromLogit256(4 * (i - 1024)).
+void combineConfidence(const ConfidenceImages& inputs, const ConfidenceModel& model, bool lidarOnly, int paths,
+                       const std::uint8_t* sigmoidTable, DeviceImage<const std::int16_t> disparity,
+                       DeviceImage<std::uint8_t> confidence, cudaStream_t stream);
 
 // lr_check.cu
 void rightDisparityIndex(DeviceVolume<const std::uint16_t> sum, int minDisparity,
