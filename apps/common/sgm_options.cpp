@@ -126,8 +126,9 @@ Backend backendFrom(const Arguments& args) {
     for (Backend b : {Backend::CpuRef, Backend::Cpu, Backend::Cuda}) {
       if (isAvailable(b)) built += ", " + toString(b);
     }
-    throw std::invalid_argument("option -backend: " + name + " is not built into this library (available: auto" +
-                                built + ")");
+    // Not built, or built but unable to run here (cuda without a device): say which.
+    throw std::invalid_argument("option -backend: " + name + " cannot run here: " + unavailableReason(backend) +
+                                " (available: auto" + built + ")");
   }
   return backend;
 }
