@@ -18,6 +18,25 @@ std::string sizeText(int width, int height) {
   return std::to_string(width) + "x" + std::to_string(height);
 }
 
+// The right image must match the left one in size and bit depth.
+void checkSamePair(const GrayImageView& left, const GrayImageView& right) {
+  if (right.width() != left.width() || right.height() != left.height()) {
+    throw std::invalid_argument("left and right images differ in size: left " + sizeText(left.width(), left.height()) +
+                                ", right " + sizeText(right.width(), right.height()));
+  }
+  if (left.gray8.empty() != right.gray8.empty()) {
+    throw std::invalid_argument("left and right images differ in bit depth (one is 8-bit, the other 16-bit)");
+  }
+}
+
+void checkOutput(ImageView<std::int16_t> disparity, int width, int height) {
+  if (disparity.data == nullptr || disparity.width != width || disparity.height != height ||
+      disparity.stride < width) {
+    throw std::invalid_argument("the output disparity image is " + sizeText(disparity.width, disparity.height) +
+                                " but the frame is " + sizeText(width, height));
+  }
+}
+
 }  // namespace
 
 std::string toString(Backend backend) {
@@ -156,13 +175,7 @@ void Matcher::compute(const GrayImageView& left, const GrayImageView& right, con
     if (left.empty()) throw std::invalid_argument("the left image is empty");
     width = left.width();
     height = left.height();
-    if (right.width() != width || right.height() != height) {
-      throw std::invalid_argument("left and right images differ in size: left " + sizeText(width, height) +
-                                  ", right " + sizeText(right.width(), right.height()));
-    }
-    if (left.gray8.empty() != right.gray8.empty()) {
-      throw std::invalid_argument("left and right images differ in bit depth (one is 8-bit, the other 16-bit)");
-    }
+    checkSamePair(left, right);
     if (haveLidar && (lidar->width() != width || lidar->height() != height)) {
       throw std::invalid_argument("LiDAR points are for a " + sizeText(lidar->width(), lidar->height()) +
                                   " image but the stereo images are " + sizeText(width, height));
@@ -175,11 +188,7 @@ void Matcher::compute(const GrayImageView& left, const GrayImageView& right, con
       throw std::invalid_argument("left and up images differ in bit depth (one is 8-bit, the other 16-bit)");
     }
   }
-  if (disparity.empty() || disparity.width != width || disparity.height != height ||
-      disparity.stride < width) {
-    throw std::invalid_argument("the output disparity image is " + sizeText(disparity.width, disparity.height) +
-                                " but the frame is " + sizeText(width, height));
-  }
+  checkOutput(disparity, width, height);
   timings_ = StageTimings{};
   rescaleMs_ = 0;
   if (!params_.confidence) confidence_ = Image<std::uint8_t>();
@@ -208,18 +217,8 @@ void Matcher::computeOnDevice(const DeviceFrame& frame, ImageView<std::int16_t> 
     throw std::invalid_argument("DeviceFrame without a left image must give its size (width, height), got " +
                                 sizeText(width, height));
   }
-  if (haveRight && (frame.right.width() != width || frame.right.height() != height)) {
-    throw std::invalid_argument("left and right images differ in size: left " + sizeText(width, height) +
-                                ", right " + sizeText(frame.right.width(), frame.right.height()));
-  }
-  if (haveRight && frame.left.gray8.empty() != frame.right.gray8.empty()) {
-    throw std::invalid_argument("left and right images differ in bit depth (one is 8-bit, the other 16-bit)");
-  }
-  if (disparity.data == nullptr || disparity.width != width || disparity.height != height ||
-      disparity.stride < width) {
-    throw std::invalid_argument("the output disparity image is " + sizeText(disparity.width, disparity.height) +
-                                " but the frame is " + sizeText(width, height));
-  }
+  if (haveRight) checkSamePair(frame.left, frame.right);
+  checkOutput(disparity, width, height);
   timings_ = StageTimings{};
   rescaleMs_ = 0;
   if (!params_.confidence) confidence_ = Image<std::uint8_t>();

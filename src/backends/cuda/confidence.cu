@@ -91,18 +91,9 @@ __global__ void disparityRangeKernel(DeviceImage<const std::int16_t> disparity, 
   range(x, y) = static_cast<std::uint8_t>(min((hi - lo) / kDisparityScale, kDisparityRangeCap));
 }
 
-struct DeviceConfidenceInputs {
-  DeviceImage<const std::uint8_t> margin;
-  DeviceImage<const std::uint16_t> bestCost;
-  DeviceImage<const std::uint8_t> leftRightDifference;
-  DeviceImage<const std::uint8_t> lidarDistance;
-  DeviceImage<const std::uint8_t> texture;
-  DeviceImage<const std::uint8_t> saturated;
-  DeviceImage<const std::uint8_t> disparityRange;
-};
 
 // confidencePixel, confidenceLogit256 and confidenceFromLogit256 (core/confidence.cpp).
-__global__ void combineKernel(DeviceConfidenceInputs in, ConfidenceModel model, bool lidarOnly, int paths,
+__global__ void combineKernel(ConfidenceImages in, ConfidenceModel model, bool lidarOnly, int paths,
                               const std::uint8_t* sigmoid, DeviceImage<const std::int16_t> disparity,
                               DeviceImage<std::uint8_t> confidence) {
   const int x = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
@@ -163,10 +154,8 @@ void disparityRange(DeviceImage<const std::int16_t> disparity, DeviceImage<std::
 void combineConfidence(const ConfidenceImages& inputs, const ConfidenceModel& model, bool lidarOnly, int paths,
                        const std::uint8_t* sigmoidTable, DeviceImage<const std::int16_t> disparity,
                        DeviceImage<std::uint8_t> confidence, cudaStream_t stream) {
-  const DeviceConfidenceInputs in{inputs.margin, inputs.bestCost, inputs.leftRightDifference, inputs.lidarDistance,
-                                  inputs.texture, inputs.saturated, inputs.disparityRange};
   combineKernel<<<pixelGrid(disparity.width, disparity.height), pixelBlock(), 0, stream>>>(
-      in, model, lidarOnly, paths, sigmoidTable, disparity, confidence);
+      inputs, model, lidarOnly, paths, sigmoidTable, disparity, confidence);
   LIDAR_SGM_CUDA_CHECK_LAUNCH("combineKernel");
 }
 
