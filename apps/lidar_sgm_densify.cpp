@@ -12,12 +12,11 @@
 #include <pcl/console/print.h>
 
 #include "common/arguments.hpp"
-#include "common/filter_options.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
-#include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
+#include "densify/densify_options.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/cloud_preview.hpp"
@@ -27,13 +26,13 @@
 
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
+using lidar_sgm::apps::OutputOptions;
+using lidar_sgm::apps::parseImageSize;
 using lidar_sgm::apps::Timer;
 
 namespace {
 
 void printHelp(const char* program) {
-  const lidar_sgm::geometry::ProjectionOptions projection;
-  const lidar_sgm::geometry::ReprojectionOptions reprojection;
   const lidar_sgm::io::CloudPreviewOptions preview;
   std::printf(
       "Syntax is: %s INPUT.{pcd,bin,ply} OUTPUT.{pcd,ply} -calib CALIB [-left L.png] [-right R.png] <options>\n"
@@ -47,20 +46,6 @@ void printHelp(const char* program) {
       "  -image_size WxH          image size when neither the calibration nor an image gives it (KITTI object calib)\n"
       "where options are:\n"
       "%s"
-      "  -format binary|compressed|ascii\n"
-      "                           OUTPUT's encoding: binary (PCD DATA binary, PLY binary_little_endian; the\n"
-      "                           fastest), compressed (PCD binary_compressed: PCL's LZF, 10-20x slower and\n"
-      "                           only ~3 %% smaller for a dense cloud; not for PLY) or ascii (text, ~60x\n"
-      "                           slower) (default: binary)\n"
-      "  -keep_organized          one point per pixel, NaN where there is none (default: valid points only)\n"
-      "  -frame lidar|camera      output frame (default: lidar, the input's frame)\n"
-      "  -max_depth M             drop output points deeper than M metres, 0 = keep all (default: %g)\n"
-      "  -stride S                every S-th pixel in x and y (default: %d)\n"
-      "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with points\n"
-      "                           more than max(%g px, %g*d) nearer on two opposite sides within +-%d columns,\n"
-      "                           +-%d rows)\n"
-      "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
-      "                           cleared, nothing was measured there)\n"
       "%s"
       "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
       "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
@@ -82,57 +67,20 @@ void printHelp(const char* program) {
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
-      program, lidar_sgm::apps::sgmOptionsHelp().c_str(), reprojection.maxDepth, reprojection.stride,
-      projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
-      projection.occlusion.halfHeight, lidar_sgm::apps::filterOptionsHelp().c_str(), preview.width, preview.height,
+      program, lidar_sgm::apps::sgmOptionsHelp().c_str(), lidar_sgm::apps::outputOptionsHelp().c_str(),
+      preview.width, preview.height,
       preview.cameraHeight, preview.cameraBehind, preview.pitchDeg, preview.groundBelowCamera);
 }
 
-/// "1242x375" -> (1242, 375); `option` names the option in errors.
-void parseImageSize(const std::string& text, int& width, int& height, const char* option = "image_size") {
-  const std::size_t x = text.find('x');
+/// -format, -frame, -max_depth, -stride (shared with lidar_sgm_batch), and OUTPUT's extension
+/// for the format, checked before any file is read.
+OutputOptions checkedOutputOptions(const Arguments& args) {
+  const OutputOptions o = lidar_sgm::apps::outputOptionsFrom(args);
   try {
-    std::size_t used = 0;
-    if (x == std::string::npos) throw std::invalid_argument("no x");
-    width = std::stoi(text.substr(0, x), &used);
-    if (used != x) throw std::invalid_argument("trailing");
-    height = std::stoi(text.substr(x + 1), &used);
-    if (used != text.size() - x - 1) throw std::invalid_argument("trailing");
-  } catch (const std::exception&) {
-    throw std::invalid_argument(std::string("option -") + option + ": '" + text +
-                                "' is not WIDTHxHEIGHT (e.g. 1242x375)");
-  }
-  if (width <= 0 || height <= 0) {
-    throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' must be positive");
-  }
-}
-
-struct OutputOptions {
-  lidar_sgm::io::CloudFormat format = lidar_sgm::io::CloudFormat::Binary;
-  lidar_sgm::geometry::OutputFrame frame = lidar_sgm::geometry::OutputFrame::Lidar;
-  double maxDepth = lidar_sgm::geometry::ReprojectionOptions().maxDepth;
-  int stride = 1;
-};
-
-/// -format, -frame, -max_depth, -stride, checked before any file is read.
-OutputOptions outputOptionsFrom(const Arguments& args) {
-  OutputOptions o;
-  try {
-    o.format = lidar_sgm::io::cloudFormatFromString(args.text("format", "binary"));
     lidar_sgm::io::checkCloudOutput(args.positionals().at(1), o.format);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("option -format: ") + e.what());
   }
-  const std::string frame = args.text("frame", "lidar");
-  if (frame != "lidar" && frame != "camera") {
-    throw std::invalid_argument("option -frame: '" + frame + "' must be lidar or camera");
-  }
-  o.frame = frame == "camera" ? lidar_sgm::geometry::OutputFrame::Camera : lidar_sgm::geometry::OutputFrame::Lidar;
-  o.maxDepth = args.number("max_depth", o.maxDepth);
-  if (o.maxDepth < 0.0) throw std::invalid_argument("option -max_depth: must be >= 0 [m] (0 = keep all)");
-  if (o.maxDepth == 0.0) o.maxDepth = std::numeric_limits<double>::infinity();
-  o.stride = args.integer("stride", o.stride);
-  if (o.stride < 1) throw std::invalid_argument("option -stride: must be >= 1");
   return o;
 }
 
@@ -188,41 +136,12 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   sgm.setInputCloud(scan);
   sgm.setCalibration(calibration);
   const lidar_sgm::Parameters params = lidar_sgm::apps::parametersFrom(args);
-  sgm.setParameters(params);
-  sgm.setBackend(lidar_sgm::apps::backendFrom(args));
-  sgm.setDisparityRangeMode(lidar_sgm::apps::fixedDisparityRange(args) ? lidar_sgm::DisparityRangeMode::Fixed
-                                                                        : lidar_sgm::DisparityRangeMode::FromLidar);
-  lidar_sgm::geometry::ProjectionOptions projection;
-  projection.occlusion.enabled = !args.has("no_occlusion_filter");
-  sgm.setProjectionOptions(projection);
-  sgm.setKeepOrganized(args.has("keep_organized"));
-  sgm.setCropToScan(!args.has("no_crop_to_scan"));
-  sgm.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
-  sgm.setOutputFilters(lidar_sgm::apps::outputFiltersFrom(args));
-  const OutputOptions out = outputOptionsFrom(args);
-  sgm.setOutputFrame(out.frame);
-  sgm.setMaxDepth(out.maxDepth);
-  sgm.setStride(out.stride);
+  lidar_sgm::apps::configureDensification(sgm, args);
+  const OutputOptions out = checkedOutputOptions(args);
   const std::string frame = args.text("frame", "lidar");
   // Matching sees the images' full depth (8 or 16 bit gray); the output's color is 8-bit. Both
   // come from the image decoded once.
-  if (!right.empty()) {
-    const cv::Mat leftGray = lidar_sgm::io::toGray(left);
-    const cv::Mat rightGray = lidar_sgm::io::toGray(right);
-    if (leftGray.depth() != rightGray.depth()) {
-      throw std::invalid_argument("the left and right images differ in bit depth (8 vs 16 bit)");
-    }
-    if (leftGray.depth() == CV_16U) {
-      const auto l = lidar_sgm::io::grayView(leftGray).gray16;
-      const auto r = lidar_sgm::io::grayView(rightGray).gray16;
-      sgm.setStereoPair(l, r);
-    } else {
-      const auto l = lidar_sgm::io::grayView(leftGray).gray8;
-      const auto r = lidar_sgm::io::grayView(rightGray).gray8;
-      sgm.setStereoPair(l, r);
-    }
-  }
-  if (!left.empty()) sgm.setColorImage(lidar_sgm::io::toPclImage(lidar_sgm::io::toColor(left)));
+  lidar_sgm::apps::setImages(sgm, left, right);
 
   pcl::PointCloud<PointOutT> dense;
   sgm.filter(dense);
@@ -300,12 +219,11 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
 int run(int argc, char** argv) {
   using lidar_sgm::apps::joined;
   const Arguments args(argc, argv,
-                       joined(joined(lidar_sgm::apps::sgmValueOptions(), lidar_sgm::apps::filterValueOptions()),
-                              {"calib", "left", "right", "image_size", "format", "frame", "max_depth", "stride",
-                               "disparity", "depth", "color", "confidence", "preview", "preview_color",
-                               "preview_size", "preview_height", "preview_behind", "preview_pitch", "preview_ground"}),
-                       joined(joined(lidar_sgm::apps::sgmFlagOptions(), lidar_sgm::apps::filterFlagOptions()),
-                              {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"}));
+                       joined(lidar_sgm::apps::densifyValueOptions(),
+                              {"calib", "left", "right", "disparity", "depth", "color", "confidence", "preview",
+                               "preview_color", "preview_size", "preview_height", "preview_behind", "preview_pitch",
+                               "preview_ground"}),
+                       lidar_sgm::apps::densifyFlagOptions());
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
   if (files.size() != 2) {
@@ -344,11 +262,8 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("cannot write '" + path + "': the folder '" + folder.string() + "' does not exist");
     }
   }
-  lidar_sgm::apps::parametersFrom(args);  // reject bad parameters before loading anything
-  lidar_sgm::apps::outputFiltersFrom(args);
-  lidar_sgm::apps::backendFrom(args);
-  lidar_sgm::apps::fixedDisparityRange(args);
-  outputOptionsFrom(args);
+  lidar_sgm::apps::checkDensifyOptions(args);  // reject bad options before loading anything
+  checkedOutputOptions(args);
   previewOptionsFrom(args);
   int width = 0;
   int height = 0;

@@ -1,0 +1,98 @@
+#include "densify/densify_options.hpp"
+
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+namespace lidar_sgm {
+namespace apps {
+
+OutputOptions outputOptionsFrom(const Arguments& args) {
+  OutputOptions o;
+  try {
+    o.format = io::cloudFormatFromString(args.text("format", "binary"));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("option -format: ") + e.what());
+  }
+  const std::string frame = args.text("frame", "lidar");
+  if (frame != "lidar" && frame != "camera") {
+    throw std::invalid_argument("option -frame: '" + frame + "' must be lidar or camera");
+  }
+  o.frame = frame == "camera" ? geometry::OutputFrame::Camera : geometry::OutputFrame::Lidar;
+  o.maxDepth = args.number("max_depth", o.maxDepth);
+  if (o.maxDepth < 0.0) throw std::invalid_argument("option -max_depth: must be >= 0 [m] (0 = keep all)");
+  if (o.maxDepth == 0.0) o.maxDepth = std::numeric_limits<double>::infinity();
+  o.stride = args.integer("stride", o.stride);
+  if (o.stride < 1) throw std::invalid_argument("option -stride: must be >= 1");
+  return o;
+}
+
+void parseImageSize(const std::string& text, int& width, int& height, const char* option) {
+  const std::size_t x = text.find('x');
+  try {
+    std::size_t used = 0;
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    width = std::stoi(text.substr(0, x), &used);
+    if (used != x) throw std::invalid_argument("trailing");
+    height = std::stoi(text.substr(x + 1), &used);
+    if (used != text.size() - x - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text +
+                                "' is not WIDTHxHEIGHT (e.g. 1242x375)");
+  }
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' must be positive");
+  }
+}
+
+std::set<std::string> densifyValueOptions() {
+  return joined(joined(sgmValueOptions(), filterValueOptions()),
+                {"image_size", "format", "frame", "max_depth", "stride"});
+}
+
+std::set<std::string> densifyFlagOptions() {
+  return joined(joined(sgmFlagOptions(), filterFlagOptions()),
+                {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"});
+}
+
+std::string outputOptionsHelp() {
+  const geometry::ProjectionOptions projection;
+  const geometry::ReprojectionOptions reprojection;
+  char text[2400];
+  std::snprintf(
+      text, sizeof(text),
+      "  -format binary|compressed|ascii\n"
+      "                           OUTPUT's encoding: binary (PCD DATA binary, PLY binary_little_endian; the\n"
+      "                           fastest), compressed (PCD binary_compressed: PCL's LZF, 10-20x slower and\n"
+      "                           only ~3 %% smaller for a dense cloud; not for PLY) or ascii (text, ~60x\n"
+      "                           slower) (default: binary)\n"
+      "  -keep_organized          one point per pixel, NaN where there is none (default: valid points only)\n"
+      "  -frame lidar|camera      output frame (default: lidar, the input's frame)\n"
+      "  -max_depth M             drop output points deeper than M metres, 0 = keep all (default: %g)\n"
+      "  -stride S                every S-th pixel in x and y (default: %d)\n"
+      "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with points\n"
+      "                           more than max(%g px, %g*d) nearer on two opposite sides within +-%d columns,\n"
+      "                           +-%d rows)\n"
+      "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
+      "                           cleared, nothing was measured there)\n",
+      reprojection.maxDepth, reprojection.stride, projection.occlusion.minGap, projection.occlusion.relativeGap,
+      projection.occlusion.halfWidth, projection.occlusion.halfHeight);
+  return text + filterOptionsHelp();
+}
+
+void checkDensifyOptions(const Arguments& args) {
+  parametersFrom(args);
+  outputFiltersFrom(args);
+  backendFrom(args);
+  fixedDisparityRange(args);
+  minConfidenceFrom(args);
+  outputOptionsFrom(args);
+  if (args.has("image_size")) {
+    int width = 0;
+    int height = 0;
+    parseImageSize(args.text("image_size", ""), width, height);
+  }
+}
+
+}  // namespace apps
+}  // namespace lidar_sgm
