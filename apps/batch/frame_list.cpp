@@ -1,0 +1,187 @@
+#include "batch/frame_list.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/output_paths.hpp"
+
+namespace fs = std::filesystem;
+
+namespace lidar_sgm {
+namespace apps {
+namespace {
+
+bool isScan(const fs::path& path) {
+  const std::string extension = lowerExtension(path.string());
+  return extension == ".bin" || extension == ".pcd" || extension == ".ply";
+}
+
+/// `folder/stem.png` when it is a file, else "".
+std::string imageFor(const fs::path& folder, const std::string& stem) {
+  const fs::path image = folder / (stem + ".png");
+  std::error_code ec;
+  return fs::is_regular_file(image, ec) ? image.string() : std::string();
+}
+
+/// One frame per scan in `scanFolder`, in name order; `calibOf` gives a frame's calibration file.
+template <typename CalibOf>
+std::vector<Frame> framesOf(const fs::path& scanFolder, const fs::path& leftFolder, const fs::path& rightFolder,
+                            const std::string& namePrefix, CalibrationFormat format, CalibOf calibOf) {
+  std::vector<fs::path> scans;
+  for (const fs::directory_entry& entry : fs::directory_iterator(scanFolder)) {
+    if (entry.is_regular_file() && isScan(entry.path())) scans.push_back(entry.path());
+  }
+  std::sort(scans.begin(), scans.end());
+  std::vector<Frame> frames;
+  std::set<std::string> stems;
+  for (const fs::path& scan : scans) {
+    const std::string stem = scan.stem().string();
+    if (!stems.insert(stem).second) {
+      throw std::invalid_argument("'" + scanFolder.string() + "' has two scans named '" + stem +
+                                  "' (different extensions): which one is the frame?");
+    }
+    Frame frame;
+    frame.name = namePrefix + stem;
+    frame.scan = scan.string();
+    frame.left = imageFor(leftFolder, stem);
+    frame.right = frame.left.empty() ? std::string() : imageFor(rightFolder, stem);
+    frame.calib = calibOf(stem);
+    frame.calibFormat = format;
+    frames.push_back(frame);
+  }
+  return frames;
+}
+
+bool isDirectory(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_directory(path, ec);
+}
+
+bool isOdometrySequence(const fs::path& dir) { return isDirectory(dir / "velodyne") && fs::exists(dir / "calib.txt"); }
+
+std::vector<Frame> odometrySequence(const fs::path& dir, const std::string& namePrefix) {
+  const std::string calib = (dir / "calib.txt").string();
+  return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", namePrefix, CalibrationFormat::KittiOdometry,
+                  [&](const std::string&) { return calib; });
+}
+
+/// Every sequence of a `sequences` folder, in name order.
+std::vector<Frame> odometrySequences(const fs::path& sequences) {
+  std::vector<fs::path> folders;
+  for (const fs::directory_entry& entry : fs::directory_iterator(sequences)) {
+    if (entry.is_directory() && isOdometrySequence(entry.path())) folders.push_back(entry.path());
+  }
+  std::sort(folders.begin(), folders.end());
+  std::vector<Frame> frames;
+  for (const fs::path& folder : folders) {
+    const std::vector<Frame> sequence = odometrySequence(folder, folder.filename().string() + "/");
+    frames.insert(frames.end(), sequence.begin(), sequence.end());
+  }
+  return frames;
+}
+
+std::vector<Frame> framesOfLayout(const fs::path& dir) {
+  if (isOdometrySequence(dir)) return odometrySequence(dir, "");
+  if (isDirectory(dir / "velodyne_points" / "data")) {
+    // The drive's calibration is the date folder's (calib_cam_to_cam.txt, calib_velo_to_cam.txt).
+    const std::string calib = fs::absolute(dir).lexically_normal().parent_path().string();
+    return framesOf(dir / "velodyne_points" / "data", dir / "image_02" / "data", dir / "image_03" / "data", "",
+                    CalibrationFormat::Auto, [&](const std::string&) { return calib; });
+  }
+  if (isDirectory(dir / "velodyne") && isDirectory(dir / "calib")) {
+    return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", "", CalibrationFormat::Auto,
+                    [&](const std::string& stem) { return (dir / "calib" / (stem + ".txt")).string(); });
+  }
+  const fs::path sequences = isDirectory(dir / "sequences") ? dir / "sequences" : dir;
+  return odometrySequences(sequences);
+}
+
+}  // namespace
+
+std::vector<Frame> framesFromDirectory(const std::string& dir) {
+  if (!isDirectory(dir)) throw std::invalid_argument("-input_dir '" + dir + "' is not a folder");
+  std::vector<Frame> frames = framesOfLayout(fs::path(dir));
+  if (frames.empty()) {
+    throw std::invalid_argument(
+        "-input_dir '" + dir +
+        "' has no frames: expected a KITTI odometry sequence (velodyne/, calib.txt, image_2/, image_3/), a KITTI "
+        "odometry root (sequences/NN/), a KITTI raw drive (velodyne_points/data/, image_02/data/, image_03/data/) "
+        "or the KITTI object layout (velodyne/, calib/, image_2/, image_3/), with .bin, .pcd or .ply scans");
+  }
+  return frames;
+}
+
+std::vector<Frame> framesFromList(const std::string& listPath) {
+  std::ifstream in(listPath);
+  if (!in) throw std::invalid_argument("cannot read the list file '" + listPath + "'");
+  const fs::path base = fs::path(listPath).parent_path();
+  const auto resolve = [&](const std::string& field) -> std::string {
+    if (field == "-") return "";
+    const fs::path path(field);
+    return path.is_absolute() ? field : (base / path).string();
+  };
+  std::vector<Frame> frames;
+  std::set<std::string> names;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string where = "'" + listPath + "' line " + std::to_string(number);
+    std::istringstream fields(line);
+    std::vector<std::string> parts;
+    for (std::string part; fields >> part;) parts.push_back(part);
+    if (parts.empty() || parts[0][0] == '#') continue;
+    if (parts.size() != 4) {
+      throw std::invalid_argument(where + ": expected SCAN LEFT RIGHT CALIB ('-' for a missing image), got " +
+                                  std::to_string(parts.size()) + " field(s)");
+    }
+    if (parts[0] == "-" || parts[3] == "-") throw std::invalid_argument(where + ": SCAN and CALIB are required");
+    if (parts[1] == "-" && parts[2] != "-") throw std::invalid_argument(where + ": a RIGHT image needs a LEFT one");
+    Frame frame;
+    frame.scan = resolve(parts[0]);
+    frame.left = resolve(parts[1]);
+    frame.right = resolve(parts[2]);
+    frame.calib = resolve(parts[3]);
+    frame.name = fs::path(frame.scan).stem().string();
+    if (!names.insert(frame.name).second) {
+      throw std::invalid_argument(where + ": a second scan named '" + frame.name +
+                                  "'; each frame's output is named after its scan");
+    }
+    frames.push_back(frame);
+  }
+  if (frames.empty()) throw std::invalid_argument("the list file '" + listPath + "' has no frames");
+  return frames;
+}
+
+Shard parseShard(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  Shard shard;
+  try {
+    std::size_t used = 0;
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    shard.index = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("trailing");
+    shard.count = std::stoi(text.substr(slash + 1), &used);
+    if (used != text.size() - slash - 1) throw std::invalid_argument("trailing");
+  } catch (const std::exception&) {
+    throw std::invalid_argument("option -shard: '" + text + "' is not K/N (e.g. 0/4)");
+  }
+  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
+    throw std::invalid_argument("option -shard: '" + text + "' needs N >= 1 and 0 <= K < N");
+  }
+  return shard;
+}
+
+std::vector<Frame> framesOfShard(const std::vector<Frame>& frames, const Shard& shard) {
+  std::vector<Frame> mine;
+  for (std::size_t i = static_cast<std::size_t>(shard.index); i < frames.size();
+       i += static_cast<std::size_t>(shard.count)) {
+    mine.push_back(frames[i]);
+  }
+  return mine;
+}
+
+}  // namespace apps
+}  // namespace lidar_sgm

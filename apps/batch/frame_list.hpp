@@ -1,0 +1,60 @@
+#pragma once
+// The frames of a sequence, found in the layouts people have: KITTI odometry, KITTI raw, KITTI
+// object, or a plain list file. Only paths are gathered here; nothing is read but folder listings
+// and the list file.
+
+#include <string>
+#include <vector>
+
+namespace lidar_sgm {
+namespace apps {
+
+/// How a frame's calibration file is read.
+enum class CalibrationFormat {
+  Auto,          ///< io::readCalibration: KITTI object .txt, KITTI raw (folder or calib_cam_to_cam.txt), YAML
+  KittiOdometry  ///< KITTI odometry calib.txt (P0..P3 and Tr, already rectified)
+};
+
+/// One frame: its name (unique within the sequence, the output's stem) and its files; `left`
+/// and `right` are empty when absent (a frame without a pair runs LiDAR-only, colored from a
+/// lone left image).
+struct Frame {
+  std::string name;
+  std::string scan;
+  std::string left;
+  std::string right;
+  std::string calib;
+  CalibrationFormat calibFormat = CalibrationFormat::Auto;
+};
+
+/// The frames under `dir`, in name order, by its layout:
+///  - KITTI odometry sequence `NN/{velodyne,image_2,image_3,calib.txt}`; names "000000";
+///  - KITTI odometry root `sequences/NN/...` (or the `sequences` folder itself), every sequence;
+///    names "NN/000000";
+///  - KITTI raw drive `{velodyne_points,image_02,image_03}/data`, calibration in the folder above
+///    (the date's calib_cam_to_cam.txt, calib_velo_to_cam.txt); names "0000000000";
+///  - KITTI object `{velodyne,image_2,image_3,calib}` with calib/NNNNNN.txt per frame.
+/// A scan is any .bin, .pcd or .ply file of the scan folder; its images are the .png of the same
+/// stem, when present. Throws std::invalid_argument naming `dir` and the layouts it looked for
+/// when it is none of them, or when it has no scan.
+std::vector<Frame> framesFromDirectory(const std::string& dir);
+
+/// The frames of a list file: one frame per line, "SCAN LEFT RIGHT CALIB" separated by blanks,
+/// "-" for a missing image; blank lines and lines starting with '#' are skipped; relative paths
+/// are relative to the list file's folder. Names are the scan's stem. Throws
+/// std::invalid_argument naming the file and line for a line without four fields, a right
+/// image without a left one, or a name used twice.
+std::vector<Frame> framesFromList(const std::string& listPath);
+
+/// A shard "K/N" (0 <= K < N): frame i belongs to it when i % N == K.
+struct Shard {
+  int index = 0;
+  int count = 1;
+};
+/// Parses "K/N"; std::invalid_argument naming the text otherwise.
+Shard parseShard(const std::string& text);
+/// The frames of `shard`, in order.
+std::vector<Frame> framesOfShard(const std::vector<Frame>& frames, const Shard& shard);
+
+}  // namespace apps
+}  // namespace lidar_sgm

@@ -1,0 +1,58 @@
+#pragma once
+// The batch's manifest: one JSON line per frame, appended as the frame ends, so that a run that
+// is stopped still says what it did.
+
+#include <cstddef>
+#include <cstdio>
+#include <string>
+
+namespace lidar_sgm {
+namespace apps {
+
+/// Where a frame's time went [ms]; 0 for a skipped or failed frame's untimed stages.
+struct FrameTimings {
+  double load = 0;       ///< scan, calibration, images
+  double project = 0;    ///< the Densifier's stages (DensificationTimings)
+  double match = 0;
+  double reproject = 0;
+  double save = 0;       ///< the cloud written (atomically)
+  double total() const { return load + project + match + reproject + save; }
+};
+
+/// One frame's line.
+struct FrameRecord {
+  std::string frame;
+  std::string status;  ///< "ok", "skipped" (its output was already complete) or "failed"
+  std::size_t points = 0;
+  FrameTimings ms;
+  std::string error;   ///< why it failed; empty otherwise
+};
+
+/// `text` as a JSON string's contents: quotes, backslashes and control characters escaped.
+std::string jsonEscape(const std::string& text);
+
+/// The record as one JSON object on one line (no newline):
+/// {"frame":..,"status":..,"points":..,"load_ms":..,"project_ms":..,"match_ms":..,
+///  "reproject_ms":..,"save_ms":..,"total_ms":..,"error":..}
+std::string toJsonLine(const FrameRecord& record);
+
+/// A manifest file, created empty (a re-run writes its own, listing the frames it skipped).
+class Manifest {
+ public:
+  /// Throws std::runtime_error naming `path` when it cannot be created.
+  explicit Manifest(const std::string& path);
+  ~Manifest();
+  Manifest(const Manifest&) = delete;
+  Manifest& operator=(const Manifest&) = delete;
+
+  /// Appends the record's line and flushes it to the file. Throws std::runtime_error on failure.
+  void append(const FrameRecord& record);
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
+
+}  // namespace apps
+}  // namespace lidar_sgm

@@ -1,0 +1,219 @@
+// lidar_sgm_batch: every frame of a sequence densified in one call, as lidar_sgm_densify densifies
+// one (the same options, the same clouds byte for byte), resumable and sharded.
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <pcl/console/print.h>
+
+#include "batch/batch_frame.hpp"
+#include "batch/frame_list.hpp"
+#include "batch/manifest.hpp"
+#include "common/arguments.hpp"
+#include "common/help_version.hpp"
+#include "common/output_paths.hpp"
+#include "common/sgm_options.hpp"
+#include "common/timer.hpp"
+#include "common/tool_main.hpp"
+#include "densify/densify_options.hpp"
+
+namespace fs = std::filesystem;
+using lidar_sgm::apps::Arguments;
+using lidar_sgm::apps::Frame;
+using lidar_sgm::apps::FrameRecord;
+
+namespace {
+
+constexpr int kDefaultProgressEvery = 10;
+
+// The signal that asked the run to stop (0: none). The frame under way is finished (its cloud is
+// renamed into place only when complete), then the run stops.
+volatile std::sig_atomic_t stopSignal = 0;
+
+extern "C" void onStopSignal(int signal) { stopSignal = signal; }
+
+/// SIGINT and SIGTERM stop the run after the current frame; a second one kills it at once
+/// (SA_RESETHAND), leaving at most that frame's hidden temporary file.
+void installStopHandlers() {
+  struct sigaction action {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+void printHelp(const char* program) {
+  std::printf(
+      "Syntax is: %s (-input_dir DIR | -list FILE) -output_dir OUT <options>\n"
+      "Densifies every frame of a sequence as lidar_sgm_densify densifies one (same options, same clouds).\n"
+      "  -input_dir DIR           the frames of DIR, by its layout:\n"
+      "                             KITTI odometry sequence  NN/{velodyne,image_2,image_3}/, NN/calib.txt\n"
+      "                             KITTI odometry root      sequences/NN/... (every sequence; outputs OUT/NN/)\n"
+      "                             KITTI raw drive          {velodyne_points,image_02,image_03}/data/, the\n"
+      "                                                      calibration in the date folder above the drive\n"
+      "                             KITTI object             velodyne/, image_2/, image_3/, calib/NNNNNN.txt\n"
+      "                           scans are .bin, .pcd or .ply; a frame's images are the .png of its stem\n"
+      "  -list FILE               a frame per line: SCAN LEFT RIGHT CALIB, '-' for a missing image; '#'\n"
+      "                           comments; relative paths from FILE's folder; CALIB as lidar_sgm_densify's\n"
+      "  -output_dir OUT          OUT/<frame>.pcd per frame (created if missing), and the manifest\n"
+      "                           OUT/manifest.jsonl (OUT/manifest.shard-K-of-N.jsonl with -shard): a JSON\n"
+      "                           line per frame: frame, status ok|skipped|failed, points, timings, error\n"
+      "A frame without an image pair runs LiDAR-only (colored from a lone left image); a frame whose file is\n"
+      "missing or bad is reported and skipped, the others go on. Exit code 0 only when every frame succeeded.\n"
+      "Every cloud is written to a temporary file renamed when complete; a re-run skips the frames whose cloud\n"
+      "exists. SIGINT/SIGTERM: the current frame is finished, the run stops (exit code 128 + signal).\n"
+      "where options are:\n"
+      "  -shard K/N               only frames i with i %% N == K (0 <= K < N): N processes cover the sequence\n"
+      "                           once, with the same clouds as one process (default: 0/1)\n"
+      "  -overwrite               redo the frames whose cloud exists (default: skip them)\n"
+      "  -extension pcd|ply       the clouds' file type (default: pcd)\n"
+      "  -progress N              a progress line on stderr every N frames (default: %d)\n"
+      "  -image_size WxH          image size when neither the calibration nor an image gives it\n"
+      "%s"
+      "%s"
+      "  -h, --help               this help\n"
+      "  --version                the tool's name and version\n"
+      "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
+      program, kDefaultProgressEvery, lidar_sgm::apps::sgmOptionsHelp().c_str(),
+      lidar_sgm::apps::outputOptionsHelp().c_str());
+}
+
+/// "12 s", "3 min 20 s", "2 h 05 min".
+std::string duration(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  char text[64];
+  if (s < 60) {
+    std::snprintf(text, sizeof(text), "%ld s", s);
+  } else if (s < 3600) {
+    std::snprintf(text, sizeof(text), "%ld min %02ld s", s / 60, s % 60);
+  } else {
+    std::snprintf(text, sizeof(text), "%ld h %02ld min", s / 3600, (s % 3600) / 60);
+  }
+  return text;
+}
+
+struct Counts {
+  std::size_t ok = 0;
+  std::size_t skipped = 0;
+  std::size_t failed = 0;
+  std::size_t done() const { return ok + skipped + failed; }
+};
+
+/// "Progress: 20/100 frames (20 %), 1.8 frames/s, ETA 44 s"; the rate counts densified frames
+/// only, so that a resumed run's quick skips do not promise a short ETA.
+void printProgress(const Counts& counts, std::size_t total, double seconds) {
+  const std::size_t worked = counts.ok + counts.failed;
+  const double rate = seconds > 0.0 ? static_cast<double>(worked) / seconds : 0.0;
+  const std::size_t left = total - counts.done();
+  std::fprintf(stderr, "Progress: %zu/%zu frames (%.0f %%), %.2f frames/s, ETA %s\n", counts.done(), total,
+               100.0 * static_cast<double>(counts.done()) / static_cast<double>(total), rate,
+               left == 0 ? "0 s" : rate > 0.0 ? duration(static_cast<double>(left) / rate).c_str() : "unknown");
+}
+
+int run(int argc, char** argv) {
+  using lidar_sgm::apps::joined;
+  const Arguments args(
+      argc, argv,
+      joined(lidar_sgm::apps::densifyValueOptions(), {"input_dir", "list", "output_dir", "shard", "extension", "progress"}),
+      joined(lidar_sgm::apps::densifyFlagOptions(), {"overwrite"}));
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_batch", [&] { printHelp(argv[0]); })) return 0;
+  if (!args.positionals().empty()) {
+    throw std::invalid_argument("unexpected argument '" + args.positionals()[0] +
+                                "' (the frames come from -input_dir or -list; see -h)");
+  }
+  if (args.has("input_dir") == args.has("list")) {
+    throw std::invalid_argument("give the frames with either -input_dir DIR or -list FILE (see -h)");
+  }
+  const std::string outDir = args.text("output_dir", "");
+  if (outDir.empty()) throw std::invalid_argument("-output_dir OUT is required");
+  lidar_sgm::apps::checkDensifyOptions(args);  // every bad option before any frame is read
+  const lidar_sgm::apps::Shard shard = lidar_sgm::apps::parseShard(args.text("shard", "0/1"));
+  const int progressEvery = args.integer("progress", kDefaultProgressEvery);
+  if (progressEvery < 1) throw std::invalid_argument("option -progress: must be >= 1 (frames)");
+  const std::string extension = args.text("extension", "pcd");
+  if (extension != "pcd" && extension != "ply") {
+    throw std::invalid_argument("option -extension: '" + extension + "' must be pcd or ply");
+  }
+  try {
+    lidar_sgm::io::checkCloudOutput("frame." + extension, lidar_sgm::apps::outputOptionsFrom(args).format);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("option -format: ") + e.what());
+  }
+  int width = 0;
+  int height = 0;
+  if (args.has("image_size")) lidar_sgm::apps::parseImageSize(args.text("image_size", ""), width, height);
+
+  const std::vector<Frame> all = args.has("list") ? lidar_sgm::apps::framesFromList(args.text("list", ""))
+                                                  : lidar_sgm::apps::framesFromDirectory(args.text("input_dir", ""));
+  const std::vector<Frame> frames = lidar_sgm::apps::framesOfShard(all, shard);
+  fs::create_directories(outDir);
+  const std::string manifestName =
+      shard.count == 1 ? "manifest.jsonl"
+                       : "manifest.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".jsonl";
+  lidar_sgm::apps::Manifest manifest((fs::path(outDir) / manifestName).string());
+  std::printf("%zu frame(s)", frames.size());
+  if (shard.count > 1) std::printf(" (shard %d/%d of %zu)", shard.index, shard.count, all.size());
+  std::printf(", output %s\n", outDir.c_str());
+  std::fflush(stdout);
+
+  installStopHandlers();
+  const lidar_sgm::apps::Timer runTimer;
+  Counts counts;
+  for (const Frame& frame : frames) {
+    if (stopSignal != 0) break;
+    FrameRecord record;
+    record.frame = frame.name;
+    const std::string outPath = (fs::path(outDir) / (frame.name + "." + extension)).string();
+    try {
+      if (!args.has("overwrite") && fs::exists(outPath)) {
+        record.status = "skipped";
+        ++counts.skipped;
+      } else {
+        for (const std::string& input : {frame.scan, frame.left, frame.right, frame.calib}) {
+          if (!input.empty() && lidar_sgm::apps::samePath(outPath, input)) {
+            throw std::invalid_argument("its output '" + outPath + "' is its input; refusing to overwrite an input");
+          }
+        }
+        fs::create_directories(fs::path(outPath).parent_path());
+        const lidar_sgm::apps::FrameResult result = lidar_sgm::apps::densifyFrame(args, frame, outPath, width, height);
+        record.status = "ok";
+        record.points = result.points;
+        record.ms = result.ms;
+        ++counts.ok;
+      }
+    } catch (const std::exception& e) {
+      record.status = "failed";
+      record.error = e.what();
+      ++counts.failed;
+      std::fprintf(stderr, "Error: frame %s: %s\n", frame.name.c_str(), e.what());
+    }
+    std::printf("%s %s", frame.name.c_str(), record.status.c_str());
+    if (record.status == "ok") std::printf(" [%.0f ms : %zu points]", record.ms.total(), record.points);
+    std::printf("\n");
+    std::fflush(stdout);
+    manifest.append(record);
+    if (counts.done() % static_cast<std::size_t>(progressEvery) == 0 || counts.done() == frames.size()) {
+      printProgress(counts, frames.size(), runTimer.elapsedMs() / 1000.0);
+    }
+  }
+  const double seconds = runTimer.elapsedMs() / 1000.0;
+  std::printf("Summary: %zu/%zu frames: %zu ok, %zu skipped, %zu failed", counts.done(), frames.size(), counts.ok,
+              counts.skipped, counts.failed);
+  if (stopSignal != 0) std::printf(", %zu not run (stopped by signal %d)", frames.size() - counts.done(), int{stopSignal});
+  std::printf(" in %.1f s (%.2f frames/s densified); manifest %s\n", seconds,
+              seconds > 0.0 ? static_cast<double>(counts.ok + counts.failed) / seconds : 0.0, manifest.path().c_str());
+  if (stopSignal != 0) return 128 + stopSignal;
+  return counts.failed == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Our messages name the problem; PCL's own console errors would repeat them.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  return lidar_sgm::apps::runTool(run, argc, argv);
+}
