@@ -57,6 +57,11 @@ std::vector<Tool> builtTools() {
   tools.push_back({"lidar_sgm_densify", LIDAR_SGM_TOOL_DENSIFY, "-calib", "in.bin out.pcd -calib c.txt -alpha high",
                    "option -alpha: 'high' is not a finite number", "in.bin", "expected INPUT and OUTPUT, got 1"});
 #endif
+#ifdef LIDAR_SGM_TOOL_BATCH
+  tools.push_back({"lidar_sgm_batch", LIDAR_SGM_TOOL_BATCH, "-output_dir", "-list l.txt -output_dir o -alpha high",
+                   "option -alpha: 'high' is not a finite number", "stray",
+                   "unexpected argument 'stray' (the frames come from -input_dir or -list; see -h)"});
+#endif
 #ifdef LIDAR_SGM_TOOL_EVAL
   tools.push_back({"lidar_sgm_eval", LIDAR_SGM_TOOL_EVAL, "-out", "-synth_frames ten",
                    "option -synth_frames: 'ten' is not an integer", "stray", "unexpected argument 'stray'"});
@@ -133,12 +138,15 @@ TEST_P(ToolOptions, WrongPositionalsExitOne) {
 // out-of-range value naming it (before reading any file).
 TEST_P(ToolOptions, OutputFilterOptionsAreListedAndChecked) {
   const std::string name = GetParam().name;
-  if (name != "lidar_sgm_disparity" && name != "lidar_sgm_densify") GTEST_SKIP() << name << " runs no Densifier";
+  if (name != "lidar_sgm_disparity" && name != "lidar_sgm_densify" && name != "lidar_sgm_batch") {
+    GTEST_SKIP() << name << " runs no Densifier";
+  }
   const RunResult help = run(GetParam().path, "-h");
   for (const char* option : {"-no_sky_filter", "-sky_texture", "-no_outlier_filter", "-outlier_min_neighbours"}) {
     EXPECT_NE(help.output.find(option), std::string::npos) << option;
   }
   const std::string line = name == "lidar_sgm_densify" ? "in.bin out.pcd -calib c.txt -outlier_min_neighbours 30"
+                           : name == "lidar_sgm_batch" ? "-list l.txt -output_dir o -outlier_min_neighbours 30"
                                                        : "l.png r.png o.png -outlier_min_neighbours 30";
   const RunResult r = run(GetParam().path, line);
   EXPECT_EQ(r.exitCode, 1) << r.output;

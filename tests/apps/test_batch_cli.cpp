@@ -1,0 +1,286 @@
+// lidar_sgm_batch as a user runs it, on small sequences rendered by lidar_sgm_synth: its clouds
+// are lidar_sgm_densify's byte for byte, whatever the layout, sharding and thread count; re-runs
+// skip finished frames; a bad frame fails alone; a signal stops the run cleanly.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace lidar_sgm {
+namespace {
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode;        ///< -1 when the command did not exit normally
+  std::string output;  ///< what the command printed (the caller redirects)
+};
+
+RunResult shell(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+RunResult batch(const std::string& arguments) { return shell(std::string(LIDAR_SGM_BATCH_TOOL) + " " + arguments + " 2>&1"); }
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> lines(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> out;
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+/// Every regular file under `dir` (relative path -> bytes), manifests left out.
+std::map<std::string, std::string> clouds(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file() || e.path().string().find("manifest") != std::string::npos) continue;
+    files[fs::relative(e.path(), dir).string()] = readText(e.path());
+  }
+  return files;
+}
+
+/// Hidden temporary files (".name.tmpPID.ext") left under `dir`.
+int temporaries(const fs::path& dir) {
+  int count = 0;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
+    count += e.path().filename().string().rfind(".", 0) == 0 ? 1 : 0;
+  }
+  return count;
+}
+
+constexpr int kFrames = 4;
+const char* const kSize = "320x96";
+
+class BatchTool : public ::testing::Test {
+ protected:
+  /// kFrames frames of 320x96 in the KITTI object layout, rendered once for the suite.
+  static void SetUpTestSuite() {
+    synth_ = fs::temp_directory_path() / "lidar_sgm_batch_synth";
+    fs::remove_all(synth_);
+    const RunResult r = shell(std::string(LIDAR_SGM_SYNTH_TOOL) + " -out " + synth_.string() + " -n " +
+                              std::to_string(kFrames) + " -width 320 -height 96 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+  }
+  static void TearDownTestSuite() { fs::remove_all(synth_); }
+
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("lidar_sgm_batch_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  static std::string stem(int i) {
+    char name[16];
+    std::snprintf(name, sizeof(name), "%06d", i);
+    return name;
+  }
+
+  /// The synthetic frames as a KITTI odometry sequence: velodyne/, image_2/, image_3/ and one
+  /// calib.txt, the object calibration with its R0_rect (the identity here) folded into Tr.
+  fs::path odometrySequence() {
+    const fs::path seq = root_ / "seq" / "00";
+    for (const char* folder : {"velodyne", "image_2", "image_3"}) {
+      fs::create_directories(seq / folder);
+      for (const fs::directory_entry& e : fs::directory_iterator(synth_ / folder)) {
+        fs::copy_file(e.path(), seq / folder / e.path().filename());
+      }
+    }
+    std::ofstream calib(seq / "calib.txt");
+    for (const std::string& line : lines(synth_ / "calib" / "000000.txt")) {
+      if (line.rfind("R0_rect:", 0) == 0) {
+        std::istringstream numbers(line.substr(8));
+        std::vector<double> r0;
+        for (double v; numbers >> v;) r0.push_back(v);
+        EXPECT_EQ(r0, (std::vector<double>{1, 0, 0, 0, 1, 0, 0, 0, 1})) << "the conversion assumes R0_rect = I";
+        continue;
+      }
+      calib << (line.rfind("Tr_velo_to_cam:", 0) == 0 ? "Tr:" + line.substr(15) : line) << '\n';
+    }
+    return seq;
+  }
+
+  /// lidar_sgm_densify's cloud of frame `i` of the object layout (fused unless `lidarOnly`).
+  std::string densified(int i, bool lidarOnly = false) {
+    const fs::path out = root_ / ("ref_" + stem(i) + ".pcd");
+    const std::string s = synth_.string();
+    std::string command = std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + s + "/velodyne/" + stem(i) + ".bin " +
+                          out.string() + " -calib " + s + "/calib/" + stem(i) + ".txt";
+    command += lidarOnly ? std::string(" -image_size ") + kSize
+                         : " -left " + s + "/image_2/" + stem(i) + ".png -right " + s + "/image_3/" + stem(i) + ".png";
+    const RunResult r = shell(command + " 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return readText(out);
+  }
+
+  static fs::path synth_;
+  fs::path root_;
+};
+
+fs::path BatchTool::synth_;
+
+TEST_F(BatchTool, OdometrySequenceGivesLidarSgmDensifysCloudsByteForByte) {
+  const fs::path seq = odometrySequence();
+  const fs::path out = root_ / "out";
+  const RunResult r = batch("-input_dir " + seq.string() + " -output_dir " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Summary: 4/4 frames: 4 ok, 0 skipped, 0 failed"), std::string::npos) << r.output;
+  for (int i = 0; i < kFrames; ++i) {
+    const std::string cloud = readText(out / (stem(i) + ".pcd"));
+    ASSERT_FALSE(cloud.empty()) << stem(i);
+    EXPECT_NE(cloud.find("FIELDS x y z rgb confidence"), std::string::npos);
+    EXPECT_TRUE(cloud == densified(i)) << stem(i) << " differs from lidar_sgm_densify's";
+  }
+  const std::vector<std::string> manifest = lines(out / "manifest.jsonl");
+  ASSERT_EQ(manifest.size(), static_cast<std::size_t>(kFrames));
+  for (int i = 0; i < kFrames; ++i) {
+    EXPECT_EQ(manifest[i].rfind("{\"frame\":\"" + stem(i) + "\",\"status\":\"ok\",\"points\":", 0), 0u) << manifest[i];
+    EXPECT_EQ(manifest[i].find("\"points\":0,"), std::string::npos) << manifest[i];
+  }
+  EXPECT_EQ(temporaries(out), 0);
+}
+
+TEST_F(BatchTool, ShardsAndThreadCountsGiveTheSameBytesAsOneProcess) {
+  const fs::path one = root_ / "one";
+  const fs::path sharded = root_ / "sharded";
+  const std::string input = "-input_dir " + synth_.string();  // the object layout
+  ASSERT_EQ(batch(input + " -output_dir " + one.string() + " -threads 1").exitCode, 0);
+  for (const char* shard : {"0/2", "1/2"}) {
+    const RunResult r = batch(input + " -output_dir " + sharded.string() + " -threads 2 -shard " + shard);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("2 frame(s) (shard " + std::string(shard) + " of 4)"), std::string::npos) << r.output;
+  }
+  const std::map<std::string, std::string> a = clouds(one);
+  EXPECT_EQ(a.size(), static_cast<std::size_t>(kFrames));
+  EXPECT_TRUE(a == clouds(sharded)) << "the sharded run's clouds differ";
+  // Each frame is in exactly one shard's manifest: frame i in shard i % 2.
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<std::string> m = lines(sharded / ("manifest.shard-" + std::to_string(k) + "-of-2.jsonl"));
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_EQ(m[0].rfind("{\"frame\":\"" + stem(k) + "\"", 0), 0u) << m[0];
+    EXPECT_EQ(m[1].rfind("{\"frame\":\"" + stem(k + 2) + "\"", 0), 0u) << m[1];
+  }
+}
+
+TEST_F(BatchTool, ReRunSkipsCompleteFramesAndOverwriteRedoesThem) {
+  const fs::path out = root_ / "out";
+  const std::string line = "-input_dir " + synth_.string() + " -output_dir " + out.string();
+  ASSERT_EQ(batch(line).exitCode, 0);
+  const std::map<std::string, std::string> first = clouds(out);
+  const fs::file_time_type written = fs::last_write_time(out / "000002.pcd");
+
+  RunResult r = batch(line);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("0 ok, 4 skipped, 0 failed"), std::string::npos) << r.output;
+  EXPECT_EQ(fs::last_write_time(out / "000002.pcd"), written);
+  for (const std::string& m : lines(out / "manifest.jsonl")) EXPECT_NE(m.find("\"status\":\"skipped\""), std::string::npos);
+
+  fs::remove(out / "000001.pcd");
+  r = batch(line);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("000001 ok"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 ok, 3 skipped, 0 failed"), std::string::npos) << r.output;
+  EXPECT_TRUE(clouds(out) == first);
+
+  r = batch(line + " -overwrite");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("4 ok, 0 skipped, 0 failed"), std::string::npos) << r.output;
+  EXPECT_TRUE(clouds(out) == first);
+}
+
+TEST_F(BatchTool, ABadFrameIsReportedAndSkippedWhileTheOthersGoOn) {
+  const fs::path seq = odometrySequence();
+  std::ofstream(seq / "velodyne" / "000001.bin", std::ios::binary | std::ios::trunc) << "truncated";
+  const fs::path out = root_ / "out";
+  const RunResult r = batch("-input_dir " + seq.string() + " -output_dir " + out.string());
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("Error: frame 000001: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3 ok, 0 skipped, 1 failed"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "000001.pcd"));
+  for (int i : {0, 2, 3}) EXPECT_TRUE(fs::exists(out / (stem(i) + ".pcd"))) << i;
+  const std::vector<std::string> manifest = lines(out / "manifest.jsonl");
+  ASSERT_EQ(manifest.size(), static_cast<std::size_t>(kFrames));
+  EXPECT_NE(manifest[1].find("\"status\":\"failed\""), std::string::npos) << manifest[1];
+  EXPECT_NE(manifest[1].find("000001.bin"), std::string::npos) << "the error names the file: " << manifest[1];
+  EXPECT_EQ(temporaries(out), 0);
+}
+
+TEST_F(BatchTool, ListFileFramesWithoutImagesRunLidarOnlyAsLidarSgmDensifyDoes) {
+  const std::string s = synth_.string();
+  std::ofstream(root_ / "frames.txt") << "# scan left right calib\n"
+                                      << s << "/velodyne/000000.bin " << s << "/image_2/000000.png " << s
+                                      << "/image_3/000000.png " << s << "/calib/000000.txt\n"
+                                      << s << "/velodyne/000001.bin - - " << s << "/calib/000001.txt\n";
+  const fs::path out = root_ / "out";
+  const RunResult r = batch("-list " + (root_ / "frames.txt").string() + " -output_dir " + out.string() +
+                            " -image_size " + kSize);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(readText(out / "000000.pcd") == densified(0));
+  const std::string lidarOnly = readText(out / "000001.pcd");
+  EXPECT_NE(lidarOnly.find("FIELDS x y z confidence"), std::string::npos);
+  EXPECT_TRUE(lidarOnly == densified(1, true)) << "the LiDAR-only frame differs from lidar_sgm_densify's";
+}
+
+TEST_F(BatchTool, ProgressLineEveryNFramesOnStderr) {
+  const RunResult r = shell(std::string(LIDAR_SGM_BATCH_TOOL) + " -input_dir " + synth_.string() + " -output_dir " +
+                            (root_ / "out").string() + " -progress 2 2>&1 >/dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Progress: 2/4 frames (50 %), "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Progress: 4/4 frames (100 %), "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" frames/s, ETA "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("Progress: 1/4"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("Progress: 3/4"), std::string::npos) << r.output;
+}
+
+TEST_F(BatchTool, ASignalFinishesTheCurrentFrameThenStopsLeavingNoPartialFile) {
+  // 40 frames (links to one scan), slowed by the reference backend, so the signal comes mid-run.
+  constexpr int kLinks = 40;
+  std::ofstream list(root_ / "frames.txt");
+  for (int i = 0; i < kLinks; ++i) {
+    const fs::path link = root_ / "scans" / ("s" + std::to_string(i) + ".bin");
+    fs::create_directories(link.parent_path());
+    fs::create_symlink(synth_ / "velodyne" / "000000.bin", link);
+    list << link.string() << " " << synth_.string() << "/image_2/000000.png " << synth_.string()
+         << "/image_3/000000.png " << synth_.string() << "/calib/000000.txt\n";
+  }
+  list.close();
+  for (const auto& [name, number] : std::vector<std::pair<std::string, int>>{{"INT", 2}, {"TERM", 15}}) {
+    const fs::path out = root_ / ("out_" + name);
+    const std::string script =
+        std::string(LIDAR_SGM_BATCH_TOOL) + " -list " + (root_ / "frames.txt").string() + " -output_dir " +
+        out.string() + " -backend cpu_ref >" + (root_ / "log.txt").string() + " 2>&1 & pid=$!; " +
+        "for i in $(seq 1 500); do [ -s " + (out / "manifest.jsonl").string() + " ] && break; sleep 0.01; done; " +
+        "kill -" + name + " $pid; wait $pid; echo \"rc=$?\"";
+    const RunResult r = shell("sh -c '" + script + "'");
+    const std::string log = readText(root_ / "log.txt");
+    EXPECT_NE(r.output.find("rc=" + std::to_string(128 + number)), std::string::npos) << r.output << log;
+    EXPECT_NE(log.find("(stopped by signal " + std::to_string(number) + ")"), std::string::npos) << log;
+    const std::vector<std::string> manifest = lines(out / "manifest.jsonl");
+    EXPECT_GE(manifest.size(), 1u);
+    EXPECT_LT(manifest.size(), static_cast<std::size_t>(kLinks)) << "the run was not stopped";
+    EXPECT_EQ(clouds(out).size(), manifest.size()) << "every finished frame, and only those, has its cloud";
+    EXPECT_EQ(temporaries(out), 0);
+  }
+}
+
+}  // namespace
+}  // namespace lidar_sgm
