@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "common/test_data.hpp"
+
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
@@ -238,6 +240,27 @@ TEST_F(BatchTool, ListFileFramesWithoutImagesRunLidarOnlyAsLidarSgmDensifyDoes) 
   const std::string lidarOnly = readText(out / "000001.pcd");
   EXPECT_NE(lidarOnly.find("FIELDS x y z confidence"), std::string::npos);
   EXPECT_TRUE(lidarOnly == densified(1, true)) << "the LiDAR-only frame differs from lidar_sgm_densify's";
+}
+
+TEST_F(BatchTool, KittiRawDriveReadsTheDateFoldersCalibrationAsLidarSgmDensifyDoes) {
+  if (!test::haveSharedData("kitti_raw_calib_2011_09_26")) GTEST_SKIP() << "no KITTI raw calibration";
+  // A drive with the date's real calibration files above it and a scan without images.
+  const fs::path date = root_ / "2011_09_26";
+  const fs::path drive = date / "2011_09_26_drive_0001_sync";
+  fs::create_directories(drive / "velodyne_points" / "data");
+  for (const char* file : {"calib_cam_to_cam.txt", "calib_velo_to_cam.txt"}) {
+    fs::copy_file(fs::path(test::sharedDataRoot()) / "kitti_raw_calib_2011_09_26" / file, date / file);
+  }
+  const fs::path scan = drive / "velodyne_points" / "data" / "0000000000.bin";
+  fs::copy_file(synth_ / "velodyne" / "000000.bin", scan);
+  const fs::path out = root_ / "out";
+  const RunResult r = batch("-input_dir " + drive.string() + " -output_dir " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const fs::path reference = root_ / "ref.pcd";
+  const RunResult d = shell(std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + scan.string() + " " + reference.string() +
+                            " -calib " + date.string() + " 2>&1");
+  ASSERT_EQ(d.exitCode, 0) << d.output;
+  EXPECT_TRUE(readText(out / "0000000000.pcd") == readText(reference));
 }
 
 TEST_F(BatchTool, ProgressLineEveryNFramesOnStderr) {
