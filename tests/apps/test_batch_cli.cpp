@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -75,7 +76,8 @@ class BatchTool : public ::testing::Test {
  protected:
   /// kFrames frames of 320x96 in the KITTI object layout, rendered once for the suite.
   static void SetUpTestSuite() {
-    synth_ = fs::temp_directory_path() / "lidar_sgm_batch_synth";
+    // Per process: ctest runs each test in its own process, several at once.
+    synth_ = fs::temp_directory_path() / ("lidar_sgm_batch_synth_" + std::to_string(getpid()));
     fs::remove_all(synth_);
     const RunResult r = shell(std::string(LIDAR_SGM_SYNTH_TOOL) + " -out " + synth_.string() + " -n " +
                               std::to_string(kFrames) + " -width 320 -height 96 2>&1");
@@ -85,7 +87,8 @@ class BatchTool : public ::testing::Test {
 
   void SetUp() override {
     root_ = fs::temp_directory_path() /
-            ("lidar_sgm_batch_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("lidar_sgm_batch_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+             std::to_string(getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_);
   }

@@ -2,6 +2,8 @@
 // calibration and the manifest's JSON lines.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -22,7 +24,8 @@ class FrameList : public ::testing::Test {
  protected:
   void SetUp() override {
     root_ = fs::temp_directory_path() /
-            ("lidar_sgm_frame_list_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("lidar_sgm_frame_list_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+             "_" + std::to_string(getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_);
   }
