@@ -41,6 +41,7 @@ void resizeKeep(std::vector<T>& v, std::size_t n) {
 struct CpuMatcher::Frame {
   Parameters params;
   MatchMode mode = MatchMode::StereoOnly;
+  GrayImageView left;  // empty in LiDAR-only mode (the confidence reads no image there)
   const LidarPoints* lidar = nullptr;
   bool up = false;
   int ratio16 = 0;
@@ -88,6 +89,7 @@ void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& 
   Frame f;
   f.params = params;
   f.mode = mode;
+  if (mode != MatchMode::LidarOnly) f.left = left;
   f.lidar = mode == MatchMode::StereoOnly ? nullptr : lidar;
   f.up = !up.empty() && mode != MatchMode::LidarOnly;
   f.ratio16 = ratio16;
@@ -307,6 +309,29 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   }
   medianFilter(rawDisparity_.view(), f.params.medianSize, disparity, threads);
   timings_.medianFilter = msBetween(t0, Clock::now());
+  if (f.confidence) {
+    t0 = Clock::now();
+    confidenceStage(f, disparity);
+    timings_.confidence = msBetween(t0, Clock::now());
+  }
+}
+
+void CpuMatcher::confidenceStage(const Frame& f, ImageView<const std::int16_t> disparity) {
+  const int W = f.width;
+  const int H = f.height;
+  ConfidenceInputs& in = confidenceInputs_;
+  if (f.mode == MatchMode::LidarOnly) {
+    // No right view: no counterpart anywhere (the core's convention, confidence.hpp).
+    in.leftRightDifference.resize(W, H);
+    in.leftRightDifference.fill(kNoCounterpartDifference);
+  }
+  in.lidarDistance.resize(W, H);
+  in.texture.resize(W, H);
+  in.saturated.resize(W, H);
+  in.disparityRange.resize(W, H);
+  confidence_.resize(W, H);
+  confidenceOfFrame(f.left, static_cast<const Image<std::uint8_t>&>(support_).view(), disparity, f.mode,
+                    f.params.paths, in, confidence_.view(), confidenceBuffers_, f.threads);
 }
 
 template <typename PathT>
