@@ -9,6 +9,7 @@
 
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
+#include "core/confidence_pixel.hpp"
 
 namespace lidar_sgm {
 namespace cpu {
@@ -187,14 +188,30 @@ void windowRows(std::vector<T>& buffer, int width, int height, int y, const T* r
 
 // ---- the combination ----------------------------------------------------------------------------
 
-// The core's per-pixel model (confidencePixel, confidenceLogit256, confidenceFromLogit256): one
-// formula for every backend.
-void combineRow(const ConfidenceInputs& inputs, MatchMode mode, const ConfidenceModel& model, int paths,
-                const std::int16_t* d, int width, int y, std::uint8_t* out) {
+// The core's per-pixel model (confidencePixel, confidenceLogit256, confidenceFromLogit256, inline
+// here): one formula for every backend. kPaths > 0: the path count as a constant, so that
+// c = S1 / paths compiles to a shift instead of a division per pixel.
+template <int kPaths>
+void combineRowOf(const ConfidenceInputs& inputs, MatchMode mode, const ConfidenceModel& model, int paths,
+                  const std::int16_t* d, int width, int y, std::uint8_t* out) {
+  const int divisor = kPaths > 0 ? kPaths : paths;
+  const std::uint8_t* sigmoid = inline_model::sigmoidTable();
   for (int x = 0; x < width; ++x) {
     out[x] = d[x] == kInvalidDisparity
                  ? 0
-                 : confidenceFromLogit256(confidenceLogit256(model, confidencePixel(inputs, mode, paths, x, y)));
+                 : inline_model::fromLogit256(
+                       sigmoid, inline_model::logit256(model, inline_model::pixel(inputs, mode, divisor, x, y)));
+  }
+}
+
+void combineRow(const ConfidenceInputs& inputs, MatchMode mode, const ConfidenceModel& model, int paths,
+                const std::int16_t* d, int width, int y, std::uint8_t* out) {
+  if (paths == 4) {
+    combineRowOf<4>(inputs, mode, model, paths, d, width, y, out);
+  } else if (paths == 8) {
+    combineRowOf<8>(inputs, mode, model, paths, d, width, y, out);
+  } else {
+    combineRowOf<0>(inputs, mode, model, paths, d, width, y, out);
   }
 }
 
