@@ -66,7 +66,7 @@ struct CpuMatcher::Worker {
   std::vector<std::uint8_t> lidar;     // C_L (fused mode)
   std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
   std::vector<std::uint8_t> touched;   // per pixel: whether a LiDAR point touches it
-  std::vector<std::uint16_t> total;      // S of one whole row
+  std::vector<std::uint16_t> total;      // S of one pixel (the selection needs no more)
   std::vector<std::uint8_t> rightward;  // L of the left-to-right path along one row (slots, bytes)
   std::vector<std::uint8_t> leftward;   // ... and of the right-to-left path
   std::vector<std::uint16_t> rightScratch;  // the right view's winners of a row
@@ -257,7 +257,7 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);
     if (f.up) resizeKeep(w.vertical, partMax);
-    resizeKeep(w.total, static_cast<std::size_t>(W) * f.D);
+    resizeKeep(w.total, static_cast<std::size_t>(f.D));
     if (f.lrCheck || f.confidenceLr) resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.D, f.params.minDisparity));
     if (newLayout || w.rightward.size() != rowBytes) w.rightward.assign(rowBytes, 0xFF);
     if (newLayout || w.leftward.size() != rowBytes) w.leftward.assign(rowBytes, 0xFF);
@@ -459,16 +459,21 @@ void CpuMatcher::sweepDown(const Frame& f) {
         paths[count++] = rightward;
         paths[count++] = leftward;
         const auto s0 = Clock::now();
-        sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
-                     w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y));
+        // The right view's winners and the confidence inputs that need S (from the winners before
+        // the left-right check), in the same pass over each pixel's S as the selection.
+        WinnerExtras extras;
+        extras.width = W;
+        extras.pixelTotal = true;  // nothing reads the row's S after the selection
         if (f.lrCheck || f.confidenceLr) {
-          rightDisparityIndexRow(w.total.data(), W, D, p.minDisparity, w.rightScratch.data(), rightIndex_.view().row(y));
+          extras.rightScratch = w.rightScratch.data();
+          extras.rightIndex = rightIndex_.view().row(y);
         }
-        // The confidence inputs that need S, from the winners before the left-right check.
         if (f.confidence) {
-          peakRatioMarginRow(w.total.data(), W, D, bestIndex_.view().row(y), confidenceInputs_.margin.view().row(y),
-                             confidenceInputs_.bestCost.view().row(y));
+          extras.margin = confidenceInputs_.margin.view().row(y);
+          extras.bestCost = confidenceInputs_.bestCost.view().row(y);
         }
+        sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
+                     w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y), &extras);
         if (f.confidenceLr) {
           leftRightDifferenceRow(bestIndex_.view().row(y), rightIndex_.view().row(y), W, p.minDisparity,
                                  confidenceInputs_.leftRightDifference.view().row(y));

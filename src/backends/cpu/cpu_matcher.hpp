@@ -10,8 +10,9 @@
 //   sweep down  top to bottom, chunk by chunk: first (columns split) the upward paths of the
 //               chunk's rows again from the checkpoint below it, then the downward paths; then
 //               (rows split) the left-to-right and right-to-left paths, S = the sum of all
-//               paths, winner-takes-all + sub-pixel and, with the left-right check, the right
-//               view's winners. One barrier per chunk (per row only for the diagonals of 8
+//               paths, winner-takes-all + sub-pixel and, in the same visit of each pixel's S
+//               (never a whole row of it), the right view's winners (left-right check, the
+//               confidence's left-right difference) and the peak-ratio margin. One barrier per chunk (per row only for the diagonals of 8
 //               paths): lock step per row would stall whenever another process takes a core.
 //   LR check, median   rows in parallel.
 //   confidence  the core's part too (LiDAR distance, texture, disparity range, the model), rows
