@@ -69,7 +69,7 @@ struct RightBids {
 };
 
 // The peak-ratio margin m and S1 of one pixel (core/confidence.hpp) from its S and winner `best`
-// (-1: none): a masked vector minimum over S, the winner's +-1 lanes set to the largest value.
+// (-1: none): a vector minimum over S, the winner's +-1 lanes set to the largest value.
 HWY_INLINE void PeakRatioMarginPixel(const std::uint16_t* HWY_RESTRICT S, int D, int best, std::uint8_t* margin,
                                      std::uint16_t* bestCost) {
   namespace hn = hwy::HWY_NAMESPACE;
@@ -87,12 +87,17 @@ HWY_INLINE void PeakRatioMarginPixel(const std::uint16_t* HWY_RESTRICT S, int D,
   const auto before = hn::Set(d16, static_cast<std::uint16_t>(best - 1));
   const auto at = hn::Set(d16, static_cast<std::uint16_t>(best));
   const auto after = hn::Set(d16, static_cast<std::uint16_t>(best + 1));
+  // Only the one or two vectors that hold them need the mask.
+  const int maskedBegin = std::max(best - 1, 0) / N * N;
+  const int maskedEnd = std::min(best + 1, D - 1) / N * N + N;
   auto lowest = none;
-  for (int i = 0; i < D; i += N) {
+  for (int i = 0; i < maskedBegin; i += N) lowest = hn::Min(lowest, hn::LoadU(d16, S + i));
+  for (int i = maskedBegin; i < maskedEnd; i += N) {
     const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
     const auto own = hn::Or(hn::Or(hn::Eq(index, before), hn::Eq(index, at)), hn::Eq(index, after));
     lowest = hn::Min(lowest, hn::IfThenElse(own, none, hn::LoadU(d16, S + i)));
   }
+  for (int i = maskedEnd; i < D; i += N) lowest = hn::Min(lowest, hn::LoadU(d16, S + i));
   const int second = hn::GetLane(hn::MinOfLanes(d16, lowest));
   if (second == 0xFFFF) {
     *margin = 255;
