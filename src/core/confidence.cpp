@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/confidence_pixel.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
 namespace lidar_sgm {
@@ -40,20 +41,20 @@ const ConfidenceModel& confidenceModel(MatchMode mode) {
 }
 
 int confidenceLogit256(const ConfidenceModel& model, const ConfidencePixel& p) {
-  const int noCounterpart = p.leftRight == kNoCounterpartDifference ? 1 : 0;
-  const int r = noCounterpart != 0 ? 0 : std::min(p.leftRight, kLeftRightDifferenceCap);
-  return model.bias + model.margin * p.margin + model.marginLow * std::min(p.margin, 16) + model.cost * p.cost +
-         model.leftRight * r + model.noCounterpart * noCounterpart + model.lidarDistance * p.lidarDistance +
-         model.lidarDistanceLow * std::min(p.lidarDistance, 4) + model.texture * p.texture +
-         model.textureLow * std::min(p.texture, 8) + model.saturated * p.saturated +
-         model.disparityRange * p.disparityRange + model.disparityRangeLow * std::min(p.disparityRange, 2);
+  return inline_model::logit256(model, p);
 }
 
-std::uint8_t confidenceFromLogit256(int logit256) {
+namespace inline_model {
+
+const std::uint8_t* sigmoidTable() {
   static const std::array<std::uint8_t, 2048> table = makeSigmoidTable();
-  // Floor division by 4 (1/256 -> 1/64 logit), also for negative z.
-  const int z64 = std::clamp(logit256, -4096, 4095) >> 2;
-  return table[static_cast<std::size_t>(z64 + 1024)];
+  return table.data();
+}
+
+}  // namespace inline_model
+
+std::uint8_t confidenceFromLogit256(int logit256) {
+  return inline_model::fromLogit256(inline_model::sigmoidTable(), logit256);
 }
 
 }  // namespace lidar_sgm

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <vector>
 
+#include "core/confidence_pixel.hpp"
+
 namespace lidar_sgm {
 
 void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance,
@@ -141,16 +143,7 @@ void disparityRange(ImageView<const std::int16_t> disparity, ImageView<std::uint
 }
 
 ConfidencePixel confidencePixel(const ConfidenceInputs& in, MatchMode mode, int paths, int x, int y) {
-  const bool lidarOnly = mode == MatchMode::LidarOnly;
-  ConfidencePixel p;
-  p.margin = in.margin(x, y);
-  p.cost = std::min(in.bestCost(x, y) / paths, 255);
-  p.leftRight = lidarOnly ? 0 : in.leftRightDifference(x, y);
-  p.lidarDistance = in.lidarDistance(x, y);
-  p.texture = lidarOnly ? 0 : in.texture(x, y);
-  p.saturated = lidarOnly ? 0 : in.saturated(x, y);
-  p.disparityRange = in.disparityRange(x, y);
-  return p;
+  return inline_model::pixel(in, mode, paths, x, y);
 }
 
 void combineConfidence(const ConfidenceInputs& inputs, MatchMode mode, int paths,

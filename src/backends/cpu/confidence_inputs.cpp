@@ -15,6 +15,7 @@
 #include "backends/cpu/parallel.hpp"
 
 #include "backends/cpu/simd-inl.h"
+#include "backends/cpu/winner_extras-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
@@ -24,36 +25,8 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 void PeakRatioMarginRowImpl(const std::uint16_t* totalRow, int width, int D, const std::int16_t* bestIndex,
                             std::uint8_t* margin, std::uint16_t* bestCost) {
-  const D16 d16;
-  const int N = static_cast<int>(hn::Lanes(d16));  // divides D (a multiple of 16)
-  const auto iota = hn::Iota(d16, 0);
-  const auto none = hn::Set(d16, std::uint16_t{0xFFFF});  // above every S (<= 8 * 4255)
   for (int x = 0; x < width; ++x) {
-    const int best = bestIndex[x];
-    if (best < 0) {
-      margin[x] = 0;
-      bestCost[x] = 0;
-      continue;
-    }
-    const std::uint16_t* S = totalRow + static_cast<std::size_t>(x) * D;
-    bestCost[x] = S[best];
-    // Lanes d with |d - best| <= 1 are left out.
-    const auto before = hn::Set(d16, static_cast<std::uint16_t>(best - 1));
-    const auto at = hn::Set(d16, static_cast<std::uint16_t>(best));
-    const auto after = hn::Set(d16, static_cast<std::uint16_t>(best + 1));
-    auto lowest = none;
-    for (int i = 0; i < D; i += N) {
-      const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
-      const auto own = hn::Or(hn::Or(hn::Eq(index, before), hn::Eq(index, at)), hn::Eq(index, after));
-      lowest = hn::Min(lowest, hn::IfThenElse(own, none, hn::LoadU(d16, S + i)));
-    }
-    const int second = hn::GetLane(hn::MinOfLanes(d16, lowest));
-    if (second == 0xFFFF) {
-      margin[x] = 255;
-      continue;
-    }
-    const int value = (256 * (second - S[best])) / std::max(second, 1);
-    margin[x] = static_cast<std::uint8_t>(std::min(value, 255));
+    PeakRatioMarginPixel(totalRow + static_cast<std::size_t>(x) * D, D, bestIndex[x], margin + x, bestCost + x);
   }
 }
 

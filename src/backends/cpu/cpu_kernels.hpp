@@ -117,14 +117,28 @@ void addPathRow(const std::uint16_t* path, int x0, int x1, int numDisparities, s
 void selectRow(const std::uint16_t* total, int x0, int x1, int numDisparities, int minDisparity,
                int uniquenessRatio, bool subpixel, std::int16_t* disparity16, std::int16_t* bestIndex);
 // sumPathRows and selectRow in one pass per pixel (total keeps the row's S for the LR check).
+/// What sumSelectRow also computes from each pixel's S while it is still in the L1 cache, with
+/// the code of the stand-alone row kernels below (null pointers: not wanted): the right view's
+/// winners (rightDisparityIndexRow; needs the whole row: x0 = 0, x1 = width) and the peak-ratio
+/// margin and S1 of the winners (peakRatioMarginRow).
+struct WinnerExtras {
+  int width = 0;
+  std::uint16_t* rightScratch = nullptr;  ///< rightIndexScratchSize() uint16
+  std::int16_t* rightIndex = nullptr;
+  std::uint8_t* margin = nullptr;
+  std::uint16_t* bestCost = nullptr;
+  /// `total` holds only the current pixel's S (D uint16) when no one reads the row's S later:
+  /// it then stays in the L1 cache instead of streaming a whole row of S through it.
+  bool pixelTotal = false;
+};
 void sumSelectRow(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex);
+                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr);
 void sumSelectRow(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex);
+                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr);
 
 // lr_check.cpp: the right view's winners of one row from its total S (D per pixel), with
 // rightIndexScratchSize() uint16 of scratch; and the check of one row.

@@ -41,6 +41,7 @@ void resizeKeep(std::vector<T>& v, std::size_t n) {
 struct CpuMatcher::Frame {
   Parameters params;
   MatchMode mode = MatchMode::StereoOnly;
+  GrayImageView left;  // empty in LiDAR-only mode (the confidence reads no image there)
   const LidarPoints* lidar = nullptr;
   bool up = false;
   int ratio16 = 0;
@@ -65,7 +66,7 @@ struct CpuMatcher::Worker {
   std::vector<std::uint8_t> lidar;     // C_L (fused mode)
   std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
   std::vector<std::uint8_t> touched;   // per pixel: whether a LiDAR point touches it
-  std::vector<std::uint16_t> total;      // S of one whole row
+  std::vector<std::uint16_t> total;      // S of one pixel (the selection needs no more)
   std::vector<std::uint8_t> rightward;  // L of the left-to-right path along one row (slots, bytes)
   std::vector<std::uint8_t> leftward;   // ... and of the right-to-left path
   std::vector<std::uint16_t> rightScratch;  // the right view's winners of a row
@@ -88,6 +89,7 @@ void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& 
   Frame f;
   f.params = params;
   f.mode = mode;
+  if (mode != MatchMode::LidarOnly) f.left = left;
   f.lidar = mode == MatchMode::StereoOnly ? nullptr : lidar;
   f.up = !up.empty() && mode != MatchMode::LidarOnly;
   f.ratio16 = ratio16;
@@ -255,7 +257,7 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);
     if (f.up) resizeKeep(w.vertical, partMax);
-    resizeKeep(w.total, static_cast<std::size_t>(W) * f.D);
+    resizeKeep(w.total, static_cast<std::size_t>(f.D));
     if (f.lrCheck || f.confidenceLr) resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.D, f.params.minDisparity));
     if (newLayout || w.rightward.size() != rowBytes) w.rightward.assign(rowBytes, 0xFF);
     if (newLayout || w.leftward.size() != rowBytes) w.leftward.assign(rowBytes, 0xFF);
@@ -307,6 +309,29 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   }
   medianFilter(rawDisparity_.view(), f.params.medianSize, disparity, threads);
   timings_.medianFilter = msBetween(t0, Clock::now());
+  if (f.confidence) {
+    t0 = Clock::now();
+    confidenceStage(f, disparity);
+    timings_.confidence = msBetween(t0, Clock::now());
+  }
+}
+
+void CpuMatcher::confidenceStage(const Frame& f, ImageView<const std::int16_t> disparity) {
+  const int W = f.width;
+  const int H = f.height;
+  ConfidenceInputs& in = confidenceInputs_;
+  if (f.mode == MatchMode::LidarOnly) {
+    // No right view: no counterpart anywhere (the core's convention, confidence.hpp).
+    in.leftRightDifference.resize(W, H);
+    in.leftRightDifference.fill(kNoCounterpartDifference);
+  }
+  in.lidarDistance.resize(W, H);
+  in.texture.resize(W, H);
+  in.saturated.resize(W, H);
+  in.disparityRange.resize(W, H);
+  confidence_.resize(W, H);
+  confidenceOfFrame(f.left, static_cast<const Image<std::uint8_t>&>(support_).view(), disparity, f.mode,
+                    f.params.paths, in, confidence_.view(), confidenceBuffers_, f.threads);
 }
 
 template <typename PathT>
@@ -434,16 +459,21 @@ void CpuMatcher::sweepDown(const Frame& f) {
         paths[count++] = rightward;
         paths[count++] = leftward;
         const auto s0 = Clock::now();
-        sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
-                     w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y));
+        // The right view's winners and the confidence inputs that need S (from the winners before
+        // the left-right check), in the same pass over each pixel's S as the selection.
+        WinnerExtras extras;
+        extras.width = W;
+        extras.pixelTotal = true;  // nothing reads the row's S after the selection
         if (f.lrCheck || f.confidenceLr) {
-          rightDisparityIndexRow(w.total.data(), W, D, p.minDisparity, w.rightScratch.data(), rightIndex_.view().row(y));
+          extras.rightScratch = w.rightScratch.data();
+          extras.rightIndex = rightIndex_.view().row(y);
         }
-        // The confidence inputs that need S, from the winners before the left-right check.
         if (f.confidence) {
-          peakRatioMarginRow(w.total.data(), W, D, bestIndex_.view().row(y), confidenceInputs_.margin.view().row(y),
-                             confidenceInputs_.bestCost.view().row(y));
+          extras.margin = confidenceInputs_.margin.view().row(y);
+          extras.bestCost = confidenceInputs_.bestCost.view().row(y);
         }
+        sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
+                     w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y), &extras);
         if (f.confidenceLr) {
           leftRightDifferenceRow(bestIndex_.view().row(y), rightIndex_.view().row(y), W, p.minDisparity,
                                  confidenceInputs_.leftRightDifference.view().row(y));

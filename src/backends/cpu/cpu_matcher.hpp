@@ -10,10 +10,13 @@
 //   sweep down  top to bottom, chunk by chunk: first (columns split) the upward paths of the
 //               chunk's rows again from the checkpoint below it, then the downward paths; then
 //               (rows split) the left-to-right and right-to-left paths, S = the sum of all
-//               paths, winner-takes-all + sub-pixel and, with the left-right check, the right
-//               view's winners. One barrier per chunk (per row only for the diagonals of 8
+//               paths, winner-takes-all + sub-pixel and, in the same visit of each pixel's S
+//               (never a whole row of it), the right view's winners (left-right check, the
+//               confidence's left-right difference) and the peak-ratio margin. One barrier per chunk (per row only for the diagonals of 8
 //               paths): lock step per row would stall whenever another process takes a core.
 //   LR check, median   rows in parallel.
+//   confidence  the core's part too (LiDAR distance, texture, disparity range, the model), rows
+//               or columns in parallel, so that no stage of the frame runs on one thread.
 //
 // Why this shape: this machine class moves about 8 GB/s, so every full volume costs ~15 ms to
 // write and read back. C is the one volume kept (it costs the most to recompute: 62-bit
@@ -26,6 +29,7 @@
 
 #include "backends/common/cost_volume.hpp"
 #include "backends/common/lidar_cost_table.hpp"
+#include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/huge_buffer.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
@@ -43,6 +47,8 @@ class CpuMatcher final : public Matcher {
   void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
                        const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
                        ImageView<std::int16_t> disparity) override;
+  /// The confidence's core part runs here too, with the backend's threads (confidence.cpp).
+  bool computesConfidence() const override { return true; }
 
  private:
   struct Frame;  // the inputs of one compute(), resolved
@@ -58,6 +64,9 @@ class CpuMatcher final : public Matcher {
     return reinterpret_cast<T*>(bytes.data()) + elementOffset;
   }
   void costRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* cost, Worker& worker);
+  /// The confidence and the inputs the core would compute (Matcher::computeConfidence), from
+  /// the frame's left image, support_ and the final disparity.
+  void confidenceStage(const Frame& frame, ImageView<const std::int16_t> disparity);
 
   // Buffers kept between frames (resized only when the frame size changes).
   Image<std::uint64_t> leftCensus_;
@@ -81,7 +90,8 @@ class CpuMatcher final : public Matcher {
   Image<std::int16_t> rightIndex_;
   Image<std::uint8_t> coverage_;
   Image<std::uint8_t> touched_;  // 1 where a LiDAR point lies in the pixel's 3x3 neighbourhood
-  Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
+  Image<std::uint16_t> lidarWeights_;
+  ConfidenceBuffers confidenceBuffers_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
   LidarCostTable table_;
   float tableSigma_ = 0;
   int tableCap_ = -1;

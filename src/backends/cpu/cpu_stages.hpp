@@ -10,8 +10,11 @@
 // cpu_ref on its own.
 
 #include <cstdint>
+#include <vector>
 
 #include "backends/common/stages.hpp"
+#include "lidar_sgm/core/confidence.hpp"
+#include "lidar_sgm/core/matcher.hpp"
 
 namespace lidar_sgm {
 namespace cpu {
@@ -62,6 +65,32 @@ void leftRightDifference(ImageView<const std::int16_t> bestIndex, ImageView<cons
                          int minDisparity, ImageView<std::uint8_t> difference, int threads);
 
 void medianFilter(ImageView<const std::int16_t> in, int size, ImageView<std::int16_t> out, int threads);
+
+// The confidence's core part (confidence.cpp): the core's functions of core/confidence_inputs.hpp,
+// which cpu_ref runs, plus the thread count; the same bytes for any `threads`.
+
+/// Whole-image buffers of the functions below, kept by the matcher between frames (grown only).
+struct ConfidenceBuffers {
+  std::vector<std::uint8_t> vertical;  ///< the LiDAR distance along columns
+  std::vector<std::uint8_t> gradient;  ///< |I(x+1) - I(x-1)|, two repeated border columns each side
+  std::vector<std::uint16_t> rowSum;   ///< its sum over 5 columns
+  std::vector<std::int16_t> rowMin, rowMax;  ///< the valid disparities' extremes over 5 columns
+};
+
+void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance,
+                   ConfidenceBuffers& buffers, int threads);
+void textureAndSaturation(const GrayImageView& image, ImageView<std::uint8_t> texture,
+                          ImageView<std::uint8_t> saturated, ConfidenceBuffers& buffers, int threads);
+void disparityRange(ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> range,
+                    ConfidenceBuffers& buffers, int threads);
+void combineConfidence(const ConfidenceInputs& inputs, MatchMode mode, int paths,
+                       ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> confidence, int threads);
+/// All four above in one pass of one thread team (what the matcher runs): `inputs`' lidarDistance,
+/// texture, saturated and disparityRange, then `confidence`, all already at the disparity's size;
+/// their margin, bestCost and leftRightDifference already filled. An empty `image`: t = s = 0.
+void confidenceOfFrame(const GrayImageView& image, ImageView<const std::uint8_t> support,
+                       ImageView<const std::int16_t> disparity, MatchMode mode, int paths, ConfidenceInputs& inputs,
+                       ImageView<std::uint8_t> confidence, ConfidenceBuffers& buffers, int threads);
 
 }  // namespace cpu
 }  // namespace lidar_sgm

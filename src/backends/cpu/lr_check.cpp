@@ -17,6 +17,7 @@
 #include "backends/cpu/parallel.hpp"
 
 #include "backends/cpu/simd-inl.h"
+#include "backends/cpu/winner_extras-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
@@ -27,32 +28,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 void RightDisparityIndexRowImpl(const std::uint16_t* totalRow, int width, int D, int minDisparity,
                                 std::uint16_t* scratch, std::int16_t* rightIndex) {
-  const D16 d16;
-  const int N = static_cast<int>(hn::Lanes(d16));
-  // Slot j = offset + (width - 1 - xr) holds right pixel xr's best cost and winner so far.
-  const int offset = D + std::abs(minDisparity) + N;
-  const std::size_t size = rightIndexScratchSize(width, D, minDisparity) / 2;
-  std::uint16_t* bestCost = scratch;
-  std::uint16_t* bestIndex = scratch + size;
-  std::fill(bestCost, bestCost + size, std::uint16_t{0xFFFF});  // above every S (<= 8 * 4255)
-  std::fill(bestIndex, bestIndex + size, std::uint16_t{0xFFFF});  // -1 as int16: no candidate
-  const auto iota = hn::Iota(d16, 0);
-  for (int x = 0; x < width; ++x) {
-    // Right pixel xr = x - minDisparity - d: slot offset + width - 1 - x + minDisparity + d.
-    const std::size_t base = static_cast<std::size_t>(offset + width - 1 - x + minDisparity);
-    const std::uint16_t* S = totalRow + static_cast<std::size_t>(x) * D;
-    for (int i = 0; i < D; i += N) {
-      const auto cost = hn::LoadU(d16, bestCost + base + i);
-      const auto bid = hn::LoadU(d16, S + i);
-      const auto better = hn::Lt(bid, cost);  // strictly: for a right pixel the smaller d bids first and wins ties
-      hn::StoreU(hn::IfThenElse(better, bid, cost), d16, bestCost + base + i);
-      const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
-      hn::StoreU(hn::IfThenElse(better, index, hn::LoadU(d16, bestIndex + base + i)), d16, bestIndex + base + i);
-    }
-  }
-  for (int xr = 0; xr < width; ++xr) {
-    rightIndex[xr] = static_cast<std::int16_t>(bestIndex[offset + width - 1 - xr]);
-  }
+  RightBids bids(scratch, width, D, minDisparity);
+  for (int x = 0; x < width; ++x) bids.bid(totalRow + static_cast<std::size_t>(x) * D, x, D);
+  bids.winners(rightIndex);
 }
 
 }  // namespace HWY_NAMESPACE

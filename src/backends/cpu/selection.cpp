@@ -6,12 +6,14 @@
 #include <hwy/highway.h>
 
 #include <cstdlib>
+#include <optional>
 
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
 
 #include "backends/cpu/simd-inl.h"
+#include "backends/cpu/winner_extras-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
@@ -76,18 +78,24 @@ void SelectRowImpl(const std::uint16_t* total, int x0, int x1, int D, int minDis
 }
 
 // Eq. 2 straight from the paths: per pixel the sum over paths (written to total, which stays in
-// the L1 cache for the winner search), its minimum on the fly, then the selection.
+// the L1 cache for the winner search), its minimum on the fly, then the selection and `extras`.
 template <typename T>
 void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8, const std::uint16_t* stored16,
                    int x0, int x1, int D, int minDisparity, int uniquenessRatio, bool subpixel, std::uint16_t* total,
-                   std::int16_t* disparity16, std::int16_t* bestIndex) {
+                   std::int16_t* disparity16, std::int16_t* bestIndex, const WinnerExtras* extras) {
   const D16 d16;
   const int N = static_cast<int>(hn::Lanes(d16));
   const int slot = pathSlot(D);
+  const bool margin = extras != nullptr && extras->margin != nullptr;
+  const bool pixelTotal = extras != nullptr && extras->pixelTotal;
+  std::optional<RightBids> bids;
+  if (extras != nullptr && extras->rightIndex != nullptr) {
+    bids.emplace(extras->rightScratch, extras->width, D, minDisparity);
+  }
   for (int x = x0; x < x1; ++x) {
     const std::size_t local = static_cast<std::size_t>(x - x0) * D;
     const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1;
-    std::uint16_t* S = total + local;
+    std::uint16_t* S = pixelTotal ? total : total + local;
     auto minimum = hn::Set(d16, std::uint16_t{0xFFFF});
     for (int i = 0; i < D; i += N) {
       auto sum = stored8 != nullptr    ? LoadAsU16(stored8 + local + i)
@@ -107,20 +115,25 @@ void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8
       }
     }
     SelectPixel(S, best, x, D, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex);
+    if (margin) PeakRatioMarginPixel(S, D, bestIndex[x], extras->margin + x, extras->bestCost + x);
+    if (bids) bids->bid(S, x, D);
   }
+  if (bids) bids->winners(extras->rightIndex);
 }
 
 void SumSelectRow8(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                    const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
-                   bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex) {
+                   bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
+                   const WinnerExtras* extras) {
   SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                disparity16, bestIndex);
+                disparity16, bestIndex, extras);
 }
 void SumSelectRow16(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                     const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
-                    bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex) {
+                    bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
+                   const WinnerExtras* extras) {
   SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                disparity16, bestIndex);
+                disparity16, bestIndex, extras);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -145,16 +158,16 @@ void selectRow(const std::uint16_t* total, int x0, int x1, int numDisparities, i
 void sumSelectRow(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex) {
+                  std::int16_t* bestIndex, const WinnerExtras* extras) {
   HWY_DYNAMIC_DISPATCH(SumSelectRow8)(paths, count, stored8, stored16, x0, x1, numDisparities, minDisparity,
-                                      uniquenessRatio, subpixel, total, disparity16, bestIndex);
+                                      uniquenessRatio, subpixel, total, disparity16, bestIndex, extras);
 }
 void sumSelectRow(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex) {
+                  std::int16_t* bestIndex, const WinnerExtras* extras) {
   HWY_DYNAMIC_DISPATCH(SumSelectRow16)(paths, count, stored8, stored16, x0, x1, numDisparities, minDisparity,
-                                       uniquenessRatio, subpixel, total, disparity16, bestIndex);
+                                       uniquenessRatio, subpixel, total, disparity16, bestIndex, extras);
 }
 
 void selectDisparity(const AggregatedCostVolume& sum, int minDisparity, int uniquenessRatio, bool subpixel,

@@ -1,0 +1,115 @@
+// What else the winner search reads from one pixel's S (D uint16), for every Highway target: the
+// right view's bids (lr_check.cpp) and the peak-ratio margin (confidence_inputs.cpp). Shared so
+// that the selection (selection.cpp) can run them on S while it is still in the L1 cache, with
+// the very code of the stand-alone stages.
+// Per-target header: included once per target, hence the toggled guard instead of #pragma once.
+#if defined(LIDAR_SGM_CPU_WINNER_EXTRAS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef LIDAR_SGM_CPU_WINNER_EXTRAS_INL_H_
+#undef LIDAR_SGM_CPU_WINNER_EXTRAS_INL_H_
+#else
+#define LIDAR_SGM_CPU_WINNER_EXTRAS_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+
+#include "backends/cpu/cpu_kernels.hpp"
+#include "backends/cpu/simd-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace lidar_sgm {
+namespace cpu {
+namespace HWY_NAMESPACE {
+
+// The right view's winners of a row, found by letting each left pixel x (in increasing order)
+// bid for the right pixels xr = x - minDisparity - d of all its d at once: kept in reverse column
+// order, slot offset + (width - 1 - xr), those right pixels are consecutive, so a bid is a vector
+// compare-select. `scratch`: rightIndexScratchSize() uint16.
+struct RightBids {
+  std::uint16_t* bestCost;
+  std::uint16_t* bestIndex;
+  int offset, width, minDisparity;
+
+  RightBids(std::uint16_t* scratch, int width_, int D, int minDisparity_) : width(width_), minDisparity(minDisparity_) {
+    const int N = static_cast<int>(hwy::HWY_NAMESPACE::Lanes(D16()));
+    offset = D + std::abs(minDisparity) + N;
+    const std::size_t size = rightIndexScratchSize(width, D, minDisparity) / 2;
+    bestCost = scratch;
+    bestIndex = scratch + size;
+    std::fill(bestCost, bestCost + size, std::uint16_t{0xFFFF});    // above every S (<= 8 * 4255)
+    std::fill(bestIndex, bestIndex + size, std::uint16_t{0xFFFF});  // -1 as int16: no candidate
+  }
+
+  // Left pixel x's bids, S its D costs.
+  HWY_INLINE void bid(const std::uint16_t* HWY_RESTRICT S, int x, int D) {
+    namespace hn = hwy::HWY_NAMESPACE;
+    const D16 d16;
+    const int N = static_cast<int>(hn::Lanes(d16));
+    const auto iota = hn::Iota(d16, 0);
+    // Right pixel xr = x - minDisparity - d: slot offset + width - 1 - x + minDisparity + d.
+    const std::size_t base = static_cast<std::size_t>(offset + width - 1 - x + minDisparity);
+    for (int i = 0; i < D; i += N) {
+      const auto cost = hn::LoadU(d16, bestCost + base + i);
+      const auto offer = hn::LoadU(d16, S + i);
+      const auto better = hn::Lt(offer, cost);  // strictly: for a right pixel the smaller d bids first and wins ties
+      hn::StoreU(hn::IfThenElse(better, offer, cost), d16, bestCost + base + i);
+      const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
+      hn::StoreU(hn::IfThenElse(better, index, hn::LoadU(d16, bestIndex + base + i)), d16, bestIndex + base + i);
+    }
+  }
+
+  // After every left pixel of the row has bid.
+  void winners(std::int16_t* rightIndex) const {
+    for (int xr = 0; xr < width; ++xr) rightIndex[xr] = static_cast<std::int16_t>(bestIndex[offset + width - 1 - xr]);
+  }
+};
+
+// The peak-ratio margin m and S1 of one pixel (core/confidence.hpp) from its S and winner `best`
+// (-1: none): a vector minimum over S, the winner's +-1 lanes set to the largest value.
+HWY_INLINE void PeakRatioMarginPixel(const std::uint16_t* HWY_RESTRICT S, int D, int best, std::uint8_t* margin,
+                                     std::uint16_t* bestCost) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  if (best < 0) {
+    *margin = 0;
+    *bestCost = 0;
+    return;
+  }
+  const D16 d16;
+  const int N = static_cast<int>(hn::Lanes(d16));  // divides D (a multiple of 16)
+  const auto iota = hn::Iota(d16, 0);
+  const auto none = hn::Set(d16, std::uint16_t{0xFFFF});  // above every S (<= 8 * 4255)
+  *bestCost = S[best];
+  // Lanes d with |d - best| <= 1 are left out.
+  const auto before = hn::Set(d16, static_cast<std::uint16_t>(best - 1));
+  const auto at = hn::Set(d16, static_cast<std::uint16_t>(best));
+  const auto after = hn::Set(d16, static_cast<std::uint16_t>(best + 1));
+  // Only the one or two vectors that hold them need the mask.
+  const int maskedBegin = std::max(best - 1, 0) / N * N;
+  const int maskedEnd = std::min(best + 1, D - 1) / N * N + N;
+  auto lowest = none;
+  for (int i = 0; i < maskedBegin; i += N) lowest = hn::Min(lowest, hn::LoadU(d16, S + i));
+  for (int i = maskedBegin; i < maskedEnd; i += N) {
+    const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
+    const auto own = hn::Or(hn::Or(hn::Eq(index, before), hn::Eq(index, at)), hn::Eq(index, after));
+    lowest = hn::Min(lowest, hn::IfThenElse(own, none, hn::LoadU(d16, S + i)));
+  }
+  for (int i = maskedEnd; i < D; i += N) lowest = hn::Min(lowest, hn::LoadU(d16, S + i));
+  const int second = hn::GetLane(hn::MinOfLanes(d16, lowest));
+  if (second == 0xFFFF) {
+    *margin = 255;
+    return;
+  }
+  const int value = (256 * (second - S[best])) / std::max(second, 1);
+  *margin = static_cast<std::uint8_t>(std::min(value, 255));
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace cpu
+}  // namespace lidar_sgm
+HWY_AFTER_NAMESPACE();
+
+#endif  // LIDAR_SGM_CPU_WINNER_EXTRAS_INL_H_
