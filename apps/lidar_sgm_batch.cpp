@@ -1,7 +1,12 @@
 // lidar_sgm_batch: every frame of a sequence densified in one call, as lidar_sgm_densify densifies
 // one (the same options, the same clouds byte for byte), resumable and sharded.
+#include <unistd.h>
+
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <memory>
+#include <thread>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -11,7 +16,9 @@
 
 #include "batch/batch_frame.hpp"
 #include "batch/frame_list.hpp"
+#include "batch/frame_runner.hpp"
 #include "batch/manifest.hpp"
+#include "batch/progress.hpp"
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
@@ -71,7 +78,11 @@ void printHelp(const char* program) {
       "                           once, with the same clouds as one process (default: 0/1)\n"
       "  -overwrite               redo the frames whose cloud exists (default: skip them)\n"
       "  -extension pcd|ply       the clouds' file type (default: pcd)\n"
-      "  -progress N              a progress line on stderr every N frames (default: %d)\n"
+      "  -jobs J                  frames densified at once, each on its own worker (0 = one per hardware\n"
+      "                           thread); the matcher threads of each are -threads, else the hardware\n"
+      "                           threads shared out; neither changes a cloud (default: 0)\n"
+      "  -progress N              on a terminal, one progress line redrawn in place on stderr; otherwise a\n"
+      "                           progress line every N frames (default: %d)\n"
       "  -image_size WxH          image size when neither the calibration nor an image gives it\n"
       "%s"
       "%s"
@@ -82,43 +93,21 @@ void printHelp(const char* program) {
       lidar_sgm::apps::outputOptionsHelp().c_str());
 }
 
-/// "12 s", "3 min 20 s", "2 h 05 min".
-std::string duration(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
-  char text[64];
-  if (s < 60) {
-    std::snprintf(text, sizeof(text), "%ld s", s);
-  } else if (s < 3600) {
-    std::snprintf(text, sizeof(text), "%ld min %02ld s", s / 60, s % 60);
-  } else {
-    std::snprintf(text, sizeof(text), "%ld h %02ld min", s / 3600, (s % 3600) / 60);
-  }
-  return text;
-}
-
-struct Counts {
-  std::size_t ok = 0;
-  std::size_t skipped = 0;
-  std::size_t failed = 0;
-  std::size_t done() const { return ok + skipped + failed; }
-};
-
-/// "Progress: 20/100 frames (20 %), 1.8 frames/s, ETA 44 s"; the rate counts densified frames
-/// only, so that a resumed run's quick skips do not promise a short ETA.
-void printProgress(const Counts& counts, std::size_t total, double seconds) {
-  const std::size_t worked = counts.ok + counts.failed;
-  const double rate = seconds > 0.0 ? static_cast<double>(worked) / seconds : 0.0;
-  const std::size_t left = total - counts.done();
-  std::fprintf(stderr, "Progress: %zu/%zu frames (%.0f %%), %.2f frames/s, ETA %s\n", counts.done(), total,
-               100.0 * static_cast<double>(counts.done()) / static_cast<double>(total), rate,
-               left == 0 ? "0 s" : rate > 0.0 ? duration(static_cast<double>(left) / rate).c_str() : "unknown");
+/// -jobs (0 = one per hardware thread) and the matcher threads of each (-threads, else the
+/// hardware threads shared out): results never depend on either.
+void jobsAndThreads(const Arguments& args, int& jobs, int& threads) {
+  const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  jobs = args.integer("jobs", 0);
+  if (jobs < 0) throw std::invalid_argument("option -jobs: must be >= 0 (0 = one per hardware thread)");
+  if (jobs == 0) jobs = hardware;
+  threads = args.has("threads") ? lidar_sgm::apps::parametersFrom(args).threads : std::max(1, hardware / jobs);
 }
 
 int run(int argc, char** argv) {
   using lidar_sgm::apps::joined;
   const Arguments args(
       argc, argv,
-      joined(lidar_sgm::apps::densifyValueOptions(), {"input_dir", "list", "output_dir", "shard", "extension", "progress"}),
+      joined(lidar_sgm::apps::densifyValueOptions(), {"input_dir", "list", "output_dir", "shard", "extension", "progress", "jobs"}),
       joined(lidar_sgm::apps::densifyFlagOptions(), {"overwrite"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_batch", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
@@ -134,6 +123,9 @@ int run(int argc, char** argv) {
   const lidar_sgm::apps::Shard shard = lidar_sgm::apps::parseShard(args.text("shard", "0/1"));
   const int progressEvery = args.integer("progress", kDefaultProgressEvery);
   if (progressEvery < 1) throw std::invalid_argument("option -progress: must be >= 1 (frames)");
+  int jobs = 1;
+  int threads = 1;
+  jobsAndThreads(args, jobs, threads);
   const std::string extension = args.text("extension", "pcd");
   if (extension != "pcd" && extension != "ply") {
     throw std::invalid_argument("option -extension: '" + extension + "' must be pcd or ply");
@@ -162,50 +154,92 @@ int run(int argc, char** argv) {
 
   installStopHandlers();
   const lidar_sgm::apps::Timer runTimer;
-  Counts counts;
-  for (const Frame& frame : frames) {
-    if (stopSignal != 0) break;
+  std::vector<std::unique_ptr<lidar_sgm::apps::FrameDensifier>> densifiers;
+  for (int j = 0; j < jobs; ++j) {
+    densifiers.push_back(std::make_unique<lidar_sgm::apps::FrameDensifier>(args, width, height, threads));
+  }
+  const bool overwrite = args.has("overwrite");
+  auto outPathOf = [&](const Frame& frame) { return (fs::path(outDir) / (frame.name + "." + extension)).string(); };
+
+  // One frame, whole, on worker `worker`: skipped when its cloud exists, else densified and
+  // written; a frame's own failure is its record, not an exception.
+  auto work = [&](std::size_t index, int worker) {
+    const Frame& frame = frames[index];
     FrameRecord record;
     record.frame = frame.name;
-    const std::string outPath = (fs::path(outDir) / (frame.name + "." + extension)).string();
+    const std::string outPath = outPathOf(frame);
     try {
-      if (!args.has("overwrite") && fs::exists(outPath)) {
+      if (!overwrite && fs::exists(outPath)) {
         record.status = "skipped";
-        ++counts.skipped;
-      } else {
-        for (const std::string& input : {frame.scan, frame.left, frame.right, frame.calib}) {
-          if (!input.empty() && lidar_sgm::apps::samePath(outPath, input)) {
-            throw std::invalid_argument("its output '" + outPath + "' is its input; refusing to overwrite an input");
-          }
-        }
-        fs::create_directories(fs::path(outPath).parent_path());
-        const lidar_sgm::apps::FrameResult result = lidar_sgm::apps::densifyFrame(args, frame, outPath, width, height);
-        record.status = "ok";
-        record.points = result.points;
-        record.ms = result.ms;
-        ++counts.ok;
+        record.bytes = fs::file_size(outPath);
+        return record;
       }
+      for (const std::string& input : {frame.scan, frame.left, frame.right, frame.calib}) {
+        if (!input.empty() && lidar_sgm::apps::samePath(outPath, input)) {
+          throw std::invalid_argument("its output '" + outPath + "' is its input; refusing to overwrite an input");
+        }
+      }
+      fs::create_directories(fs::path(outPath).parent_path());
+      const lidar_sgm::apps::FrameResult result = densifiers[static_cast<std::size_t>(worker)]->densify(frame, outPath);
+      record.status = "ok";
+      record.points = result.points;
+      record.bytes = result.bytes;
+      record.ms = result.ms;
     } catch (const std::exception& e) {
       record.status = "failed";
       record.error = e.what();
-      ++counts.failed;
-      std::fprintf(stderr, "Error: frame %s: %s\n", frame.name.c_str(), e.what());
     }
-    std::printf("%s %s", frame.name.c_str(), record.status.c_str());
-    if (record.status == "ok") std::printf(" [%.0f ms : %zu points]", record.ms.total(), record.points);
-    std::printf("\n");
+    return record;
+  };
+
+  lidar_sgm::apps::FrameCounts counts;
+  std::uintmax_t bytesWritten = 0;
+  lidar_sgm::apps::FrameTimings summed;
+  lidar_sgm::apps::Progress progress(stderr, isatty(fileno(stderr)) != 0, frames.size(), progressEvery);
+  // Records arrive here in frame order, on this thread: the log and the manifest read the same
+  // whatever -jobs.
+  auto done = [&](std::size_t, const FrameRecord& record) {
+    progress.clear();
+    if (record.status == "ok") {
+      ++counts.ok;
+      bytesWritten += record.bytes;
+      summed.load += record.ms.load;
+      summed.project += record.ms.project;
+      summed.match += record.ms.match;
+      summed.reproject += record.ms.reproject;
+      summed.save += record.ms.save;
+      std::printf("%s ok [%.0f ms : %zu points, %.2f MB]\n", record.frame.c_str(), record.ms.total(), record.points,
+                  static_cast<double>(record.bytes) / 1e6);
+    } else if (record.status == "skipped") {
+      ++counts.skipped;
+      std::printf("%s skipped\n", record.frame.c_str());
+    } else {
+      ++counts.failed;
+      std::printf("%s failed\n", record.frame.c_str());
+      std::fflush(stdout);
+      std::fprintf(stderr, "Error: frame %s: %s\n", record.frame.c_str(), record.error.c_str());
+    }
     std::fflush(stdout);
     manifest.append(record);
-    if (counts.done() % static_cast<std::size_t>(progressEvery) == 0 || counts.done() == frames.size()) {
-      printProgress(counts, frames.size(), runTimer.elapsedMs() / 1000.0);
-    }
-  }
+    progress.update(counts, runTimer.elapsedMs() / 1000.0);
+  };
+  lidar_sgm::apps::runFramesInOrder(frames.size(), jobs, work, done, [] { return stopSignal != 0; });
+  progress.finish();
+
   const double seconds = runTimer.elapsedMs() / 1000.0;
   std::printf("Summary: %zu/%zu frames: %zu ok, %zu skipped, %zu failed", counts.done(), frames.size(), counts.ok,
               counts.skipped, counts.failed);
   if (stopSignal != 0) std::printf(", %zu not run (stopped by signal %d)", frames.size() - counts.done(), int{stopSignal});
-  std::printf(" in %.1f s (%.2f frames/s densified); manifest %s\n", seconds,
-              seconds > 0.0 ? static_cast<double>(counts.ok + counts.failed) / seconds : 0.0, manifest.path().c_str());
+  std::printf(" in %.1f s (%.2f frames/s densified, %d job(s) x %d matcher thread(s))\n", seconds,
+              seconds > 0.0 ? static_cast<double>(counts.ok + counts.failed) / seconds : 0.0, jobs, threads);
+  if (counts.ok > 0) {
+    const double n = static_cast<double>(counts.ok);
+    std::printf("Per densified frame: %.2f MB written; load %.0f ms, project %.0f ms, match %.0f ms, reproject %.0f ms, "
+                "save %.0f ms (on its worker)\n",
+                static_cast<double>(bytesWritten) / 1e6 / n, summed.load / n, summed.project / n, summed.match / n,
+                summed.reproject / n, summed.save / n);
+  }
+  std::printf("Manifest: %s\n", manifest.path().c_str());
   if (stopSignal != 0) return 128 + stopSignal;
   return counts.failed == 0 ? 0 : 1;
 }

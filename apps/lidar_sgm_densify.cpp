@@ -17,6 +17,7 @@
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "densify/densify_options.hpp"
+#include "densify/voxel_filter.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/cloud_preview.hpp"
@@ -165,6 +166,13 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   std::printf("disparity range: %s\n", sgm.getUsedDisparityRange().describe().c_str());
   std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
               dense.width, dense.height, frame.c_str());
+  if (out.voxel > 0.0) {
+    const Timer voxelTimer;
+    const std::size_t before = dense.size();
+    lidar_sgm::apps::voxelDownsample(dense, out.voxel);
+    std::printf("Down-sampling [done, %.0f ms : %zu -> %zu points, %g m voxels]\n", voxelTimer.elapsedMs(), before,
+                dense.size(), out.voxel);
+  }
 
   const std::string outPath = args.positionals()[1];
   const std::string disparityPath = args.text("disparity", "");

@@ -1,10 +1,12 @@
 #include "batch/batch_frame.hpp"
 
+#include <filesystem>
 #include <stdexcept>
 
 #include "batch/frame_calibration.hpp"
 #include "common/timer.hpp"
 #include "densify/densify_options.hpp"
+#include "densify/voxel_filter.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/pcl/point_types.hpp"
@@ -47,11 +49,14 @@ FrameData load(const Frame& frame, int width, int height) {
 }
 
 template <typename PointOutT>
-FrameResult densify(const Arguments& args, const FrameData& data, const std::string& outPath, FrameTimings ms) {
-  SGMDensification<pcl::PointXYZI, PointOutT> sgm;
+FrameResult densifyWith(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, const Arguments& args, int threads,
+                        const FrameData& data, const std::string& outPath, FrameTimings ms) {
   sgm.setInputCloud(data.scan);
   sgm.setCalibration(data.calibration);
   configureDensification(sgm, args);
+  Parameters params = sgm.getParameters();
+  params.threads = threads;
+  sgm.setParameters(params);
   setImages(sgm, data.left, data.right);
   pcl::PointCloud<PointOutT> dense;
   sgm.filter(dense);
@@ -61,27 +66,49 @@ FrameResult densify(const Arguments& args, const FrameData& data, const std::str
   ms.match = sgm.getTimings().match;
   ms.reproject = sgm.getTimings().reproject;
   const Timer saveTimer;
-  io::writeCloud(outPath, dense, outputOptionsFrom(args).format);
+  const OutputOptions out = outputOptionsFrom(args);
+  voxelDownsample(dense, out.voxel);
+  io::writeCloud(outPath, dense, out.format);
   ms.save = saveTimer.elapsedMs();
-  return {dense.size(), ms};
+  return {dense.size(), std::filesystem::file_size(outPath), ms};
 }
 
 }  // namespace
 
-FrameResult densifyFrame(const Arguments& args, const Frame& frame, const std::string& outPath, int width,
-                         int height) {
+/// The point types lidar_sgm_densify picks: colored when an image can color it, with the
+/// confidence field unless it is off. Each is created on first use and kept.
+struct FrameDensifier::Densifications {
+  std::unique_ptr<SGMDensification<pcl::PointXYZI, pcl::PointXYZ>> xyz;
+  std::unique_ptr<SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB>> rgb;
+  std::unique_ptr<SGMDensification<pcl::PointXYZI, PointXYZConfidence>> xyzConfidence;
+  std::unique_ptr<SGMDensification<pcl::PointXYZI, PointXYZRGBConfidence>> rgbConfidence;
+
+  template <typename PointOutT>
+  static SGMDensification<pcl::PointXYZI, PointOutT>& get(
+      std::unique_ptr<SGMDensification<pcl::PointXYZI, PointOutT>>& slot) {
+    if (!slot) slot = std::make_unique<SGMDensification<pcl::PointXYZI, PointOutT>>();
+    return *slot;
+  }
+};
+
+FrameDensifier::FrameDensifier(const Arguments& args, int width, int height, int threads)
+    : args_(args), width_(width), height_(height), threads_(threads),
+      densifications_(std::make_unique<Densifications>()) {}
+
+FrameDensifier::~FrameDensifier() = default;
+
+FrameResult FrameDensifier::densify(const Frame& frame, const std::string& outPath) {
   const Timer loadTimer;
-  const FrameData data = load(frame, width, height);
+  const FrameData data = load(frame, width_, height_);
   FrameTimings ms;
   ms.load = loadTimer.elapsedMs();
-  // The point type lidar_sgm_densify picks: colored when an image can color it, with the
-  // confidence field unless it is off.
-  if (args.has("no_confidence")) {
-    return data.left.empty() ? densify<pcl::PointXYZ>(args, data, outPath, ms)
-                             : densify<pcl::PointXYZRGB>(args, data, outPath, ms);
+  Densifications& d = *densifications_;
+  if (args_.has("no_confidence")) {
+    return data.left.empty() ? densifyWith(Densifications::get(d.xyz), args_, threads_, data, outPath, ms)
+                             : densifyWith(Densifications::get(d.rgb), args_, threads_, data, outPath, ms);
   }
-  return data.left.empty() ? densify<PointXYZConfidence>(args, data, outPath, ms)
-                           : densify<PointXYZRGBConfidence>(args, data, outPath, ms);
+  return data.left.empty() ? densifyWith(Densifications::get(d.xyzConfidence), args_, threads_, data, outPath, ms)
+                           : densifyWith(Densifications::get(d.rgbConfidence), args_, threads_, data, outPath, ms);
 }
 
 }  // namespace apps

@@ -2,6 +2,7 @@
 // One frame of a batch: read, densified as lidar_sgm_densify does, written atomically.
 
 #include <cstddef>
+#include <memory>
 #include <string>
 
 #include "batch/frame_list.hpp"
@@ -13,16 +14,36 @@ namespace apps {
 
 struct FrameResult {
   std::size_t points = 0;
+  std::uintmax_t bytes = 0;  ///< the written cloud's file size
   FrameTimings ms;
 };
 
-/// Densifies `frame` with the method options of `args` (densify_options.hpp) and writes the
-/// cloud to `outPath` (.pcd or .ply, -format's encoding) through a temporary file renamed when
-/// complete. `width`/`height` is -image_size (0 = from the calibration or the images). Throws
-/// (std::exception) naming the file for a missing or bad input, an empty cloud or a failed write;
-/// nothing is left at `outPath` then.
-FrameResult densifyFrame(const Arguments& args, const Frame& frame, const std::string& outPath, int width,
-                         int height);
+/// Densifies frames one after another with the method options of `args` (densify_options.hpp),
+/// keeping one SGMDensification per output point type so that the matcher's buffers are
+/// allocated once per worker, not once per frame (the result does not depend on it: every
+/// buffer is written before it is read). Not thread-safe: one per worker thread.
+class FrameDensifier {
+ public:
+  /// `width`/`height` is -image_size (0 = from the calibration or the images); `threads` the
+  /// matcher's threads for this worker (never changes a result).
+  FrameDensifier(const Arguments& args, int width, int height, int threads);
+  ~FrameDensifier();
+  FrameDensifier(const FrameDensifier&) = delete;
+  FrameDensifier& operator=(const FrameDensifier&) = delete;
+
+  /// Densifies `frame` and writes the cloud to `outPath` (.pcd or .ply, -format's encoding)
+  /// through a temporary file renamed when complete. Throws (std::exception) naming the file for
+  /// a missing or bad input, an empty cloud or a failed write; nothing is left at `outPath` then.
+  FrameResult densify(const Frame& frame, const std::string& outPath);
+
+ private:
+  struct Densifications;
+  const Arguments& args_;
+  int width_;
+  int height_;
+  int threads_;
+  std::unique_ptr<Densifications> densifications_;
+};
 
 }  // namespace apps
 }  // namespace lidar_sgm

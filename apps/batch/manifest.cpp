@@ -37,7 +37,7 @@ std::string toJsonLine(const FrameRecord& r) {
                 "\"total_ms\":%.1f",
                 r.ms.load, r.ms.project, r.ms.match, r.ms.reproject, r.ms.save, r.ms.total());
   return "{\"frame\":\"" + jsonEscape(r.frame) + "\",\"status\":\"" + jsonEscape(r.status) +
-         "\",\"points\":" + std::to_string(r.points) + "," + timings + ",\"error\":\"" + jsonEscape(r.error) + "\"}";
+         "\",\"points\":" + std::to_string(r.points) + ",\"bytes\":" + std::to_string(r.bytes) + "," + timings + ",\"error\":\"" + jsonEscape(r.error) + "\"}";
 }
 
 Manifest::Manifest(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "w")) {

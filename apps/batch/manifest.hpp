@@ -3,6 +3,7 @@
 // is stopped still says what it did.
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -15,7 +16,7 @@ struct FrameTimings {
   double project = 0;    ///< the Densifier's stages (DensificationTimings)
   double match = 0;
   double reproject = 0;
-  double save = 0;       ///< the cloud written (atomically)
+  double save = 0;       ///< -voxel down-sampling and the cloud written (atomically)
   double total() const { return load + project + match + reproject + save; }
 };
 
@@ -24,6 +25,7 @@ struct FrameRecord {
   std::string frame;
   std::string status;  ///< "ok", "skipped" (its output was already complete) or "failed"
   std::size_t points = 0;
+  std::uintmax_t bytes = 0;  ///< the cloud file's size (also for a skipped frame's existing file)
   FrameTimings ms;
   std::string error;   ///< why it failed; empty otherwise
 };
@@ -32,7 +34,7 @@ struct FrameRecord {
 std::string jsonEscape(const std::string& text);
 
 /// The record as one JSON object on one line (no newline):
-/// {"frame":..,"status":..,"points":..,"load_ms":..,"project_ms":..,"match_ms":..,
+/// {"frame":..,"status":..,"points":..,"bytes":..,"load_ms":..,"project_ms":..,"match_ms":..,
 ///  "reproject_ms":..,"save_ms":..,"total_ms":..,"error":..}
 std::string toJsonLine(const FrameRecord& record);
 

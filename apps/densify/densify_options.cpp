@@ -1,5 +1,6 @@
 #include "densify/densify_options.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -24,6 +25,13 @@ OutputOptions outputOptionsFrom(const Arguments& args) {
   if (o.maxDepth == 0.0) o.maxDepth = std::numeric_limits<double>::infinity();
   o.stride = args.integer("stride", o.stride);
   if (o.stride < 1) throw std::invalid_argument("option -stride: must be >= 1");
+  o.voxel = args.number("voxel", o.voxel);
+  if (!(o.voxel >= 0.0) || !std::isfinite(o.voxel)) {
+    throw std::invalid_argument("option -voxel: must be a finite edge >= 0 [m] (0 = no down-sampling)");
+  }
+  if (o.voxel > 0.0 && args.has("keep_organized")) {
+    throw std::invalid_argument("option -voxel: a down-sampled cloud has no pixel grid; drop -keep_organized");
+  }
   return o;
 }
 
@@ -47,7 +55,7 @@ void parseImageSize(const std::string& text, int& width, int& height, const char
 
 std::set<std::string> densifyValueOptions() {
   return joined(joined(sgmValueOptions(), filterValueOptions()),
-                {"image_size", "format", "frame", "max_depth", "stride"});
+                {"image_size", "format", "frame", "max_depth", "stride", "voxel"});
 }
 
 std::set<std::string> densifyFlagOptions() {
@@ -58,7 +66,7 @@ std::set<std::string> densifyFlagOptions() {
 std::string outputOptionsHelp() {
   const geometry::ProjectionOptions projection;
   const geometry::ReprojectionOptions reprojection;
-  char text[2400];
+  char text[3200];
   std::snprintf(
       text, sizeof(text),
       "  -format binary|compressed|ascii\n"
@@ -70,6 +78,8 @@ std::string outputOptionsHelp() {
       "  -frame lidar|camera      output frame (default: lidar, the input's frame)\n"
       "  -max_depth M             drop output points deeper than M metres, 0 = keep all (default: %g)\n"
       "  -stride S                every S-th pixel in x and y (default: %d)\n"
+      "  -voxel V                 down-sample to one point per V-metre voxel (pcl::VoxelGrid: the centroid,\n"
+      "                           color and confidence averaged; unorganized), 0 = off (default: 0)\n"
       "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with points\n"
       "                           more than max(%g px, %g*d) nearer on two opposite sides within +-%d columns,\n"
       "                           +-%d rows)\n"

@@ -21,22 +21,23 @@
 namespace lidar_sgm {
 namespace apps {
 
-/// The dense cloud's encoding, frame and sampling (-format, -frame, -max_depth, -stride).
+/// The dense cloud's encoding, frame and sampling (-format, -frame, -max_depth, -stride, -voxel).
 struct OutputOptions {
   io::CloudFormat format = io::CloudFormat::Binary;
   geometry::OutputFrame frame = geometry::OutputFrame::Lidar;
   double maxDepth = geometry::ReprojectionOptions().maxDepth;  ///< infinity for -max_depth 0
   int stride = 1;
+  double voxel = 0;  ///< voxel edge [m] for pcl::VoxelGrid down-sampling; 0 = none
 };
 
-/// -format, -frame, -max_depth, -stride, validated (std::invalid_argument names the bad one).
+/// -format, -frame, -max_depth, -stride, -voxel, validated (std::invalid_argument names the bad one).
 OutputOptions outputOptionsFrom(const Arguments& args);
 
 /// "1242x375" -> (1242, 375); `option` names the option in errors.
 void parseImageSize(const std::string& text, int& width, int& height, const char* option = "image_size");
 
 /// Option names of the method and the cloud it writes: the matcher's, the output filters',
-/// -format, -frame, -max_depth, -stride, -image_size (values) and -keep_organized,
+/// -format, -frame, -max_depth, -stride, -voxel, -image_size (values) and -keep_organized,
 /// -no_occlusion_filter, -no_crop_to_scan (flags).
 std::set<std::string> densifyValueOptions();
 std::set<std::string> densifyFlagOptions();

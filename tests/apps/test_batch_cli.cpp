@@ -168,15 +168,24 @@ TEST_F(BatchTool, ShardsAndThreadCountsGiveTheSameBytesAsOneProcess) {
   const fs::path one = root_ / "one";
   const fs::path sharded = root_ / "sharded";
   const std::string input = "-input_dir " + synth_.string();  // the object layout
-  ASSERT_EQ(batch(input + " -output_dir " + one.string() + " -threads 1").exitCode, 0);
+  ASSERT_EQ(batch(input + " -output_dir " + one.string() + " -jobs 1 -threads 1").exitCode, 0);
   for (const char* shard : {"0/2", "1/2"}) {
-    const RunResult r = batch(input + " -output_dir " + sharded.string() + " -threads 2 -shard " + shard);
+    const RunResult r = batch(input + " -output_dir " + sharded.string() + " -jobs 2 -threads 2 -shard " + shard);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("2 frame(s) (shard " + std::string(shard) + " of 4)"), std::string::npos) << r.output;
   }
   const std::map<std::string, std::string> a = clouds(one);
   EXPECT_EQ(a.size(), static_cast<std::size_t>(kFrames));
   EXPECT_TRUE(a == clouds(sharded)) << "the sharded run's clouds differ";
+  // Frames densified three at a time: the same clouds, and the manifest still in frame order.
+  const fs::path jobs = root_ / "jobs";
+  const RunResult three = batch(input + " -output_dir " + jobs.string() + " -jobs 3");
+  ASSERT_EQ(three.exitCode, 0) << three.output;
+  EXPECT_NE(three.output.find("3 job(s) x 1 matcher thread(s)"), std::string::npos) << three.output;
+  EXPECT_TRUE(a == clouds(jobs)) << "the clouds of -jobs 3 differ";
+  const std::vector<std::string> inOrder = lines(jobs / "manifest.jsonl");
+  ASSERT_EQ(inOrder.size(), static_cast<std::size_t>(kFrames));
+  for (int i = 0; i < kFrames; ++i) EXPECT_EQ(inOrder[i].rfind("{\"frame\":\"" + stem(i) + "\"", 0), 0u) << inOrder[i];
   // Each frame is in exactly one shard's manifest: frame i in shard i % 2.
   for (int k = 0; k < 2; ++k) {
     const std::vector<std::string> m = lines(sharded / ("manifest.shard-" + std::to_string(k) + "-of-2.jsonl"));
@@ -264,6 +273,37 @@ TEST_F(BatchTool, KittiRawDriveReadsTheDateFoldersCalibrationAsLidarSgmDensifyDo
                             " -calib " + date.string() + " 2>&1");
   ASSERT_EQ(d.exitCode, 0) << d.output;
   EXPECT_TRUE(readText(out / "0000000000.pcd") == readText(reference));
+}
+
+TEST_F(BatchTool, VoxelShrinksEveryFrameAsLidarSgmDensifyDoesAndTheSizesAreReported) {
+  const fs::path full = root_ / "full";
+  const fs::path voxel = root_ / "voxel";
+  const std::string input = "-input_dir " + synth_.string();
+  ASSERT_EQ(batch(input + " -output_dir " + full.string()).exitCode, 0);
+  const RunResult r = batch(input + " -output_dir " + voxel.string() + " -voxel 0.25");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("MB written; load "), std::string::npos) << r.output;
+  const std::vector<std::string> manifest = lines(voxel / "manifest.jsonl");
+  ASSERT_EQ(manifest.size(), static_cast<std::size_t>(kFrames));
+  for (int i = 0; i < kFrames; ++i) {
+    const fs::path cloud = voxel / (stem(i) + ".pcd");
+    EXPECT_LT(fs::file_size(cloud) * 2, fs::file_size(full / (stem(i) + ".pcd"))) << stem(i);
+    EXPECT_NE(manifest[i].find("\"bytes\":" + std::to_string(fs::file_size(cloud)) + ","), std::string::npos)
+        << manifest[i];
+  }
+  // The same down-sampling as the single-frame tool, byte for byte.
+  const fs::path reference = root_ / "ref.pcd";
+  const std::string s = synth_.string();
+  const RunResult d = shell(std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + s + "/velodyne/000001.bin " +
+                            reference.string() + " -calib " + s + "/calib/000001.txt -left " + s +
+                            "/image_2/000001.png -right " + s + "/image_3/000001.png -voxel 0.25 2>&1");
+  ASSERT_EQ(d.exitCode, 0) << d.output;
+  EXPECT_TRUE(readText(reference) == readText(voxel / "000001.pcd"));
+  // A skipped frame reports its existing file's size.
+  const RunResult again = batch(input + " -output_dir " + voxel.string() + " -voxel 0.25");
+  ASSERT_EQ(again.exitCode, 0) << again.output;
+  EXPECT_NE(lines(voxel / "manifest.jsonl")[0].find("\"bytes\":" + std::to_string(fs::file_size(voxel / "000000.pcd"))),
+            std::string::npos);
 }
 
 TEST_F(BatchTool, ProgressLineEveryNFramesOnStderr) {

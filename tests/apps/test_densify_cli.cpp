@@ -11,8 +11,10 @@
 #include <fstream>
 #include <iterator>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -431,6 +433,33 @@ TEST_F(DensifyCli, KeepOrganizedWithStrideTwoHalvesTheSizeRoundingUp) {
   EXPECT_EQ(cloud.size(), std::size_t{621} * 188);
 }
 
+TEST_F(DensifyCli, VoxelKeepsOnePointPerVoxelWithTheAveragedFields) {
+  const std::string pair = " -calib " + kCalib + " -left " + kLeft + " -right " + kRight;
+  ASSERT_EQ(runTool(kScan + " " + p("full.pcd") + pair).exitCode, 0);
+  const RunResult r = runTool(kScan + " " + p("voxel.pcd") + pair + " -voxel 0.2");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Down-sampling [done, "), std::string::npos) << r.output;
+  pcl::PointCloud<PointXYZRGBConfidence> full;
+  pcl::PointCloud<PointXYZRGBConfidence> voxel;
+  ASSERT_EQ(pcl::io::loadPCDFile(p("full.pcd"), full), 0);
+  ASSERT_EQ(pcl::io::loadPCDFile(p("voxel.pcd"), voxel), 0);
+  ASSERT_GT(voxel.size(), 1000u);
+  EXPECT_LT(voxel.size() * 4, full.size()) << "a dense frame has many points per 20 cm voxel";
+  // One point per voxel: no two output points share a 0.2 m cell (a centroid lies in its cell).
+  std::set<std::tuple<long, long, long>> cells;
+  for (const auto& q : voxel) {
+    ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z));
+    EXPECT_GE(q.confidence, 0.0f);
+    EXPECT_LE(q.confidence, 1.0f);
+    cells.emplace(static_cast<long>(std::floor(q.x / 0.2f)), static_cast<long>(std::floor(q.y / 0.2f)),
+                  static_cast<long>(std::floor(q.z / 0.2f)));
+  }
+  EXPECT_EQ(cells.size(), voxel.size());
+  // The same cloud again: the same bytes.
+  ASSERT_EQ(runTool(kScan + " " + p("again.pcd") + pair + " -voxel 0.2").exitCode, 0);
+  EXPECT_TRUE(readText(p("again.pcd")) == readText(p("voxel.pcd")));
+}
+
 TEST_F(DensifyCli, SixteenBitPairMatchesAtFullDepth) {
   // The sample pair as 16-bit gray, scaled by 257: the same order of intensities, hence the
   // same census and the same disparities as the 8-bit gray the tool makes of the color pair.
@@ -625,6 +654,9 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(kScan + out + calib + pair + " -image_size 0x375", "must be positive");
   expectFailure(kScan + out + calib + pair + " -stride 0", "option -stride: must be >= 1");
   expectFailure(kScan + out + calib + pair + " -max_depth -1", "option -max_depth: must be >= 0");
+  expectFailure(kScan + out + calib + pair + " -voxel -0.1", "option -voxel: must be a finite edge >= 0");
+  expectFailure(kScan + out + calib + pair + " -voxel 0.1 -keep_organized", "option -voxel: a down-sampled cloud has no");
+  expectFailure(kScan + out + calib + pair + " -voxel 0.00001", "option -voxel: 0.000010 m is too small");
   expectFailure(kScan + " " + p("no_such_folder/out.pcd") + calib + pair, "the folder");
   expectFailure(kScan + out + calib + pair + " -color " + p("no_such_folder/c.png"), "does not exist");
   // -image_size may not contradict a calibration that has its own size (YAML, KITTI raw).
