@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <memory>
+#include <set>
 #include <thread>
 #include <filesystem>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include "batch/frame_list.hpp"
 #include "batch/frame_runner.hpp"
 #include "batch/manifest.hpp"
+#include "batch/output_state.hpp"
 #include "batch/progress.hpp"
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
@@ -143,13 +145,25 @@ int run(int argc, char** argv) {
                                                   : lidar_sgm::apps::framesFromDirectory(args.text("input_dir", ""));
   const std::vector<Frame> frames = lidar_sgm::apps::framesOfShard(all, shard);
   fs::create_directories(outDir);
+  // The options that make a cloud's bytes: the method's and the output's, not how the run is
+  // spread (-threads, -backend: every backend gives the same bytes).
+  std::set<std::string> cloudOptions = joined(lidar_sgm::apps::densifyValueOptions(), lidar_sgm::apps::densifyFlagOptions());
+  cloudOptions.erase("threads");
+  cloudOptions.erase("backend");
+  lidar_sgm::apps::checkAndRecordCloudOptions(
+      outDir, lidar_sgm::apps::cloudOptionsText(args, cloudOptions, extension), args.has("overwrite"));
+  std::vector<std::string> outPaths;
+  for (const Frame& frame : frames) outPaths.push_back((fs::path(outDir) / (frame.name + "." + extension)).string());
+  const std::size_t stale = lidar_sgm::apps::removeStaleTemporaries(outPaths);
   const std::string manifestName =
       shard.count == 1 ? "manifest.jsonl"
                        : "manifest.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".jsonl";
   lidar_sgm::apps::Manifest manifest((fs::path(outDir) / manifestName).string());
   std::printf("%zu frame(s)", frames.size());
   if (shard.count > 1) std::printf(" (shard %d/%d of %zu)", shard.index, shard.count, all.size());
-  std::printf(", output %s\n", outDir.c_str());
+  std::printf(", output %s", outDir.c_str());
+  if (stale > 0) std::printf(" (removed %zu temporary file(s) an interrupted run left)", stale);
+  std::printf("\n");
   std::fflush(stdout);
 
   installStopHandlers();
@@ -159,7 +173,6 @@ int run(int argc, char** argv) {
     densifiers.push_back(std::make_unique<lidar_sgm::apps::FrameDensifier>(args, width, height, threads));
   }
   const bool overwrite = args.has("overwrite");
-  auto outPathOf = [&](const Frame& frame) { return (fs::path(outDir) / (frame.name + "." + extension)).string(); };
 
   // One frame, whole, on worker `worker`: skipped when its cloud exists, else densified and
   // written; a frame's own failure is its record, not an exception.
@@ -167,7 +180,7 @@ int run(int argc, char** argv) {
     const Frame& frame = frames[index];
     FrameRecord record;
     record.frame = frame.name;
-    const std::string outPath = outPathOf(frame);
+    const std::string& outPath = outPaths[index];
     try {
       if (!overwrite && fs::exists(outPath)) {
         record.status = "skipped";

@@ -31,6 +31,10 @@ class Arguments {
   int integer(const std::string& name, int fallback) const;
   double number(const std::string& name, double fallback) const;
 
+  /// Every value option given (name -> value) and every flag given.
+  const std::map<std::string, std::string>& values() const { return values_; }
+  const std::set<std::string>& flags() const { return flags_; }
+
  private:
   std::vector<std::string> positionals_;
   std::map<std::string, std::string> values_;

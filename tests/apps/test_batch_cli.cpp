@@ -50,11 +50,15 @@ std::vector<std::string> lines(const fs::path& path) {
   return out;
 }
 
-/// Every regular file under `dir` (relative path -> bytes), manifests left out.
+/// Every regular file under `dir` (relative path -> bytes), manifests and the record of the
+/// cloud options left out.
 std::map<std::string, std::string> clouds(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
-    if (!e.is_regular_file() || e.path().string().find("manifest") != std::string::npos) continue;
+    if (!e.is_regular_file() || e.path().string().find("manifest") != std::string::npos ||
+        e.path().filename() == "cloud_options.txt") {
+      continue;
+    }
     files[fs::relative(e.path(), dir).string()] = readText(e.path());
   }
   return files;
@@ -304,6 +308,46 @@ TEST_F(BatchTool, VoxelShrinksEveryFrameAsLidarSgmDensifyDoesAndTheSizesAreRepor
   ASSERT_EQ(again.exitCode, 0) << again.output;
   EXPECT_NE(lines(voxel / "manifest.jsonl")[0].find("\"bytes\":" + std::to_string(fs::file_size(voxel / "000000.pcd"))),
             std::string::npos);
+}
+
+TEST_F(BatchTool, ARunWithOtherCloudOptionsIsRefusedInsteadOfMixingTwoMethods) {
+  const fs::path out = root_ / "out";
+  const std::string input = "-input_dir " + synth_.string() + " -output_dir " + out.string();
+  ASSERT_EQ(batch(input + " -alpha 0.70 -threads 1").exitCode, 0);
+  // The same cloud options (numbers written otherwise, other thread and job counts): skipped.
+  const RunResult same = batch(input + " -alpha 0.7 -threads 2 -jobs 1");
+  ASSERT_EQ(same.exitCode, 0) << same.output;
+  EXPECT_NE(same.output.find("0 ok, 4 skipped"), std::string::npos) << same.output;
+  const std::string before = clouds(out).begin()->second;
+  // Other options: refused before any frame, naming both; nothing changed.
+  const RunResult other = batch(input + " -alpha 0.5");
+  EXPECT_EQ(other.exitCode, 1) << other.output;
+  EXPECT_NE(other.output.find("were made with other options (-extension pcd -alpha 0.7) than this run's "
+                              "(-extension pcd -alpha 0.5)"),
+            std::string::npos)
+      << other.output;
+  EXPECT_TRUE(clouds(out).begin()->second == before);
+  // -overwrite redoes every frame with the new options, and records them.
+  const RunResult redo = batch(input + " -alpha 0.5 -overwrite");
+  ASSERT_EQ(redo.exitCode, 0) << redo.output;
+  EXPECT_FALSE(clouds(out).begin()->second == before);
+  EXPECT_EQ(readText(out / "cloud_options.txt"), "-extension pcd\n-alpha 0.5\n");
+}
+
+TEST_F(BatchTool, TemporariesOfAKilledRunAreRemovedOnlyForThisShardsFrames) {
+  const fs::path out = root_ / "out";
+  fs::create_directories(out);
+  // As kill -9 leaves them: a hidden temporary per frame, from another process.
+  for (int i = 0; i < kFrames; ++i) std::ofstream(out / ("." + stem(i) + ".tmp99999.pcd")) << "half a cloud";
+  std::ofstream(out / ".notes.tmp1.pcd") << "not a frame of this sequence";
+  const RunResult r = batch("-input_dir " + synth_.string() + " -output_dir " + out.string() + " -shard 0/2");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("(removed 2 temporary file(s) an interrupted run left)"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / ("." + stem(0) + ".tmp99999.pcd")));
+  EXPECT_TRUE(fs::exists(out / ("." + stem(1) + ".tmp99999.pcd"))) << "shard 1's frame: not this process's";
+  EXPECT_FALSE(fs::exists(out / ("." + stem(2) + ".tmp99999.pcd")));
+  EXPECT_TRUE(fs::exists(out / ("." + stem(3) + ".tmp99999.pcd")));
+  EXPECT_TRUE(fs::exists(out / ".notes.tmp1.pcd"));
 }
 
 TEST_F(BatchTool, ProgressLineEveryNFramesOnStderr) {

@@ -1,0 +1,103 @@
+#include "batch/output_state.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <stdexcept>
+#include <system_error>
+
+#include "common/output_paths.hpp"
+
+namespace fs = std::filesystem;
+
+namespace lidar_sgm {
+namespace apps {
+namespace {
+
+/// A number's shortest exact text ("0.70" -> "0.7"); anything else as given.
+std::string canonical(const std::string& value) {
+  char* end = nullptr;
+  errno = 0;
+  const double number = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || errno != 0 || !std::isfinite(number)) return value;
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.17g", number);
+  // The shortest of %.15g..%.17g that reads back exactly.
+  for (int digits = 15; digits <= 17; ++digits) {
+    char shorter[64];
+    std::snprintf(shorter, sizeof(shorter), "%.*g", digits, number);
+    if (std::strtod(shorter, nullptr) == number) return shorter;
+  }
+  return text;
+}
+
+std::string readAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+std::string cloudOptionsText(const Arguments& args, const std::set<std::string>& cloudOptionNames,
+                             const std::string& extension) {
+  std::string text = "-extension " + extension + "\n";
+  for (const auto& [name, value] : args.values()) {  // std::map: sorted
+    if (cloudOptionNames.count(name) > 0) text += "-" + name + " " + canonical(value) + "\n";
+  }
+  for (const std::string& name : args.flags()) {
+    if (cloudOptionNames.count(name) > 0) text += "-" + name + "\n";
+  }
+  return text;
+}
+
+std::string cloudOptionsPath(const std::string& outDir) { return (fs::path(outDir) / "cloud_options.txt").string(); }
+
+void checkAndRecordCloudOptions(const std::string& outDir, const std::string& options, bool overwrite) {
+  const std::string path = cloudOptionsPath(outDir);
+  if (fs::exists(path) && !overwrite) {
+    const std::string recorded = readAll(path);
+    if (recorded == options) return;
+    auto oneLine = [](std::string s) {
+      for (char& c : s) c = c == '\n' ? ' ' : c;
+      while (!s.empty() && s.back() == ' ') s.pop_back();
+      return s;
+    };
+    throw std::invalid_argument("the clouds in '" + outDir + "' were made with other options (" + oneLine(recorded) +
+                                ") than this run's (" + oneLine(options) +
+                                "): skipping their frames would mix both; use the same options, -overwrite to redo "
+                                "every frame, or another -output_dir");
+  }
+  writeFileAtomically(path, options);
+}
+
+std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs) {
+  static const std::regex temporary(R"(\.(.+)\.tmp[0-9]+(\.[A-Za-z0-9]+))");
+  std::set<fs::path> targets;
+  std::set<fs::path> folders;
+  for (const std::string& output : outputs) {
+    targets.insert(fs::path(output).lexically_normal());
+    folders.insert(fs::path(output).lexically_normal().parent_path());
+  }
+  std::size_t removed = 0;
+  for (const fs::path& folder : folders) {
+    std::error_code ec;
+    for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
+         it.increment(ec)) {
+      std::smatch match;
+      const std::string name = it->path().filename().string();
+      if (!std::regex_match(name, match, temporary)) continue;
+      if (targets.count(folder / (match[1].str() + match[2].str())) == 0) continue;
+      std::error_code removeError;
+      if (fs::remove(it->path(), removeError)) ++removed;
+    }
+  }
+  return removed;
+}
+
+}  // namespace apps
+}  // namespace lidar_sgm
