@@ -3,6 +3,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "batch/batch_frame.hpp"
 #include "batch/frame_list.hpp"
 #include "batch/manifest.hpp"
+#include "batch/sequence_map.hpp"
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
@@ -75,11 +77,12 @@ void printHelp(const char* program) {
       "  -image_size WxH          image size when neither the calibration nor an image gives it\n"
       "%s"
       "%s"
+      "%s"
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, kDefaultProgressEvery, lidar_sgm::apps::sgmOptionsHelp().c_str(),
-      lidar_sgm::apps::outputOptionsHelp().c_str());
+      lidar_sgm::apps::outputOptionsHelp().c_str(), lidar_sgm::apps::mapOptionsHelp().c_str());
 }
 
 /// "12 s", "3 min 20 s", "2 h 05 min".
@@ -118,7 +121,8 @@ int run(int argc, char** argv) {
   using lidar_sgm::apps::joined;
   const Arguments args(
       argc, argv,
-      joined(lidar_sgm::apps::densifyValueOptions(), {"input_dir", "list", "output_dir", "shard", "extension", "progress"}),
+      joined(joined(lidar_sgm::apps::densifyValueOptions(), lidar_sgm::apps::mapValueOptions()),
+             {"input_dir", "list", "output_dir", "shard", "extension", "progress"}),
       joined(lidar_sgm::apps::densifyFlagOptions(), {"overwrite"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_batch", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
@@ -132,6 +136,7 @@ int run(int argc, char** argv) {
   if (outDir.empty()) throw std::invalid_argument("-output_dir OUT is required");
   lidar_sgm::apps::checkDensifyOptions(args);  // every bad option before any frame is read
   const lidar_sgm::apps::Shard shard = lidar_sgm::apps::parseShard(args.text("shard", "0/1"));
+  const lidar_sgm::apps::MapOptions mapOptions = lidar_sgm::apps::mapOptionsFrom(args, shard);
   const int progressEvery = args.integer("progress", kDefaultProgressEvery);
   if (progressEvery < 1) throw std::invalid_argument("option -progress: must be >= 1 (frames)");
   const std::string extension = args.text("extension", "pcd");
@@ -150,6 +155,10 @@ int run(int argc, char** argv) {
   const std::vector<Frame> all = args.has("list") ? lidar_sgm::apps::framesFromList(args.text("list", ""))
                                                   : lidar_sgm::apps::framesFromDirectory(args.text("input_dir", ""));
   const std::vector<Frame> frames = lidar_sgm::apps::framesOfShard(all, shard);
+  std::optional<lidar_sgm::apps::SequenceMap> map;
+  if (!mapOptions.mapPath.empty()) {
+    map.emplace(mapOptions, all, lidar_sgm::apps::outputOptionsFrom(args).frame, width, height);
+  }
   fs::create_directories(outDir);
   const std::string manifestName =
       shard.count == 1 ? "manifest.jsonl"
@@ -185,6 +194,7 @@ int run(int argc, char** argv) {
         record.ms = result.ms;
         ++counts.ok;
       }
+      if (map) map->frameWritten(frame, outPath);
     } catch (const std::exception& e) {
       record.status = "failed";
       record.error = e.what();
@@ -201,13 +211,15 @@ int run(int argc, char** argv) {
     }
   }
   const double seconds = runTimer.elapsedMs() / 1000.0;
+  const lidar_sgm::apps::MapResult mapResult = map && stopSignal == 0 ? map->build() : lidar_sgm::apps::MapResult{};
   std::printf("Summary: %zu/%zu frames: %zu ok, %zu skipped, %zu failed", counts.done(), frames.size(), counts.ok,
               counts.skipped, counts.failed);
   if (stopSignal != 0) std::printf(", %zu not run (stopped by signal %d)", frames.size() - counts.done(), int{stopSignal});
-  std::printf(" in %.1f s (%.2f frames/s densified); manifest %s\n", seconds,
-              seconds > 0.0 ? static_cast<double>(counts.ok + counts.failed) / seconds : 0.0, manifest.path().c_str());
+  std::printf(" in %.1f s (%.2f frames/s densified); manifest %s%s\n", seconds,
+              seconds > 0.0 ? static_cast<double>(counts.ok + counts.failed) / seconds : 0.0, manifest.path().c_str(),
+              mapResult.summary.c_str());
   if (stopSignal != 0) return 128 + stopSignal;
-  return counts.failed == 0 ? 0 : 1;
+  return counts.failed == 0 && mapResult.ok ? 0 : 1;
 }
 
 }  // namespace
