@@ -9,6 +9,7 @@
 #include <set>
 #include <thread>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "batch/manifest.hpp"
 #include "batch/output_state.hpp"
 #include "batch/progress.hpp"
+#include "batch/sequence_map.hpp"
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
@@ -88,11 +90,12 @@ void printHelp(const char* program) {
       "  -image_size WxH          image size when neither the calibration nor an image gives it\n"
       "%s"
       "%s"
+      "%s"
       "  -h, --help               this help\n"
       "  --version                the tool's name and version\n"
       "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
       program, kDefaultProgressEvery, lidar_sgm::apps::sgmOptionsHelp().c_str(),
-      lidar_sgm::apps::outputOptionsHelp().c_str());
+      lidar_sgm::apps::outputOptionsHelp().c_str(), lidar_sgm::apps::mapOptionsHelp().c_str());
 }
 
 /// -jobs (0 = one per hardware thread) and the matcher threads of each (-threads, else the
@@ -109,7 +112,8 @@ int run(int argc, char** argv) {
   using lidar_sgm::apps::joined;
   const Arguments args(
       argc, argv,
-      joined(lidar_sgm::apps::densifyValueOptions(), {"input_dir", "list", "output_dir", "shard", "extension", "progress", "jobs"}),
+      joined(joined(lidar_sgm::apps::densifyValueOptions(), lidar_sgm::apps::mapValueOptions()),
+             {"input_dir", "list", "output_dir", "shard", "extension", "progress", "jobs"}),
       joined(lidar_sgm::apps::densifyFlagOptions(), {"overwrite"}));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_batch", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
@@ -123,6 +127,7 @@ int run(int argc, char** argv) {
   if (outDir.empty()) throw std::invalid_argument("-output_dir OUT is required");
   lidar_sgm::apps::checkDensifyOptions(args);  // every bad option before any frame is read
   const lidar_sgm::apps::Shard shard = lidar_sgm::apps::parseShard(args.text("shard", "0/1"));
+  const lidar_sgm::apps::MapOptions mapOptions = lidar_sgm::apps::mapOptionsFrom(args, shard);
   const int progressEvery = args.integer("progress", kDefaultProgressEvery);
   if (progressEvery < 1) throw std::invalid_argument("option -progress: must be >= 1 (frames)");
   int jobs = 1;
@@ -144,6 +149,10 @@ int run(int argc, char** argv) {
   const std::vector<Frame> all = args.has("list") ? lidar_sgm::apps::framesFromList(args.text("list", ""))
                                                   : lidar_sgm::apps::framesFromDirectory(args.text("input_dir", ""));
   const std::vector<Frame> frames = lidar_sgm::apps::framesOfShard(all, shard);
+  std::optional<lidar_sgm::apps::SequenceMap> map;
+  if (!mapOptions.mapPath.empty()) {
+    map.emplace(mapOptions, all, lidar_sgm::apps::outputOptionsFrom(args).frame, width, height);
+  }
   fs::create_directories(outDir);
   // The options that make a cloud's bytes: the method's and the output's, not how the run is
   // spread (-threads, -backend: every backend gives the same bytes).
@@ -211,8 +220,10 @@ int run(int argc, char** argv) {
   lidar_sgm::apps::Progress progress(stderr, isatty(fileno(stderr)) != 0, frames.size(), progressEvery);
   // Records arrive here in frame order, on this thread: the log and the manifest read the same
   // whatever -jobs.
-  auto done = [&](std::size_t, const FrameRecord& record) {
+  auto done = [&](std::size_t index, const FrameRecord& record) {
     progress.clear();
+    // The map reads the cloud back as written: a skipped frame's too.
+    if (map && record.status != "failed") map->frameWritten(frames[index], outPaths[index]);
     if (record.status == "ok") {
       ++counts.ok;
       bytesWritten += record.bytes;
@@ -240,6 +251,7 @@ int run(int argc, char** argv) {
   progress.finish();
 
   const double seconds = runTimer.elapsedMs() / 1000.0;
+  const lidar_sgm::apps::MapResult mapResult = map && stopSignal == 0 ? map->build() : lidar_sgm::apps::MapResult{};
   std::printf("Summary: %zu/%zu frames: %zu ok, %zu skipped, %zu failed", counts.done(), frames.size(), counts.ok,
               counts.skipped, counts.failed);
   if (stopSignal != 0) std::printf(", %zu not run (stopped by signal %d)", frames.size() - counts.done(), int{stopSignal});
@@ -253,8 +265,10 @@ int run(int argc, char** argv) {
                 summed.reproject / n, summed.save / n);
   }
   std::printf("Manifest: %s\n", manifest.path().c_str());
+  if (map && stopSignal != 0) std::printf("Map not built: the run was stopped; run again to finish it\n");
+  if (!mapResult.summary.empty()) std::printf("%s\n", mapResult.summary.c_str());
   if (stopSignal != 0) return 128 + stopSignal;
-  return counts.failed == 0 ? 0 : 1;
+  return counts.failed == 0 && mapResult.ok ? 0 : 1;
 }
 
 }  // namespace

@@ -1,0 +1,250 @@
+// lidar_sgm_batch -map as a user runs it, on a tiny sequence rendered by lidar_sgm_synth with
+// hand-written poses: the map and its picture, their poses found or given, re-runs that only
+// build the map, and the refusals.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <Eigen/Core>
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_cloud.h>
+
+#include "lidar_sgm/pcl/point_types.hpp"
+
+namespace lidar_sgm {
+namespace {
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode;
+  std::string output;
+};
+
+RunResult shell(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+RunResult batch(const std::string& arguments) {
+  return shell(std::string(LIDAR_SGM_BATCH_TOOL) + " " + arguments + " 2>&1");
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// The mean position of a map's points.
+Eigen::Vector3d meanOf(const fs::path& map) {
+  pcl::PointCloud<PointXYZRGBConfidence> cloud;
+  EXPECT_EQ(pcl::io::loadPCDFile(map.string(), cloud), 0) << map;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const PointXYZRGBConfidence& p : cloud) sum += Eigen::Vector3d(p.x, p.y, p.z);
+  return sum / static_cast<double>(cloud.size());
+}
+
+constexpr int kFrames = 3;
+
+/// A pose per frame: frame i at (0, 0, step * i) (driving forward), KITTI odometry format.
+std::string forwardPoses(double step, int frames = kFrames) {
+  std::string text;
+  for (int i = 0; i < frames; ++i) text += "1 0 0 0 0 1 0 0 0 0 1 " + std::to_string(step * i) + "\n";
+  return text;
+}
+
+class BatchMap : public ::testing::Test {
+ protected:
+  /// kFrames frames of 320x96, rendered once for the suite, as a KITTI odometry dataset
+  /// dataset/sequences/00 (calib.txt: the object calibration with R0_rect = I folded into Tr).
+  static void SetUpTestSuite() {
+    synth_ = fs::temp_directory_path() / ("lidar_sgm_batch_map_synth_" + std::to_string(getpid()));
+    fs::remove_all(synth_);
+    const RunResult r = shell(std::string(LIDAR_SGM_SYNTH_TOOL) + " -out " + (synth_ / "object").string() + " -n " +
+                              std::to_string(kFrames) + " -width 320 -height 96 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const fs::path seq = synth_ / "dataset" / "sequences" / "00";
+    for (const char* folder : {"velodyne", "image_2", "image_3"}) {
+      fs::create_directories(seq / folder);
+      for (const fs::directory_entry& e : fs::directory_iterator(synth_ / "object" / folder)) {
+        fs::copy_file(e.path(), seq / folder / e.path().filename());
+      }
+    }
+    std::ifstream object(synth_ / "object" / "calib" / "000000.txt");
+    std::ofstream calib(seq / "calib.txt");
+    for (std::string line; std::getline(object, line);) {
+      if (line.rfind("R0_rect:", 0) == 0) continue;  // the identity (synth's rig is rectified)
+      calib << (line.rfind("Tr_velo_to_cam:", 0) == 0 ? "Tr:" + line.substr(15) : line) << '\n';
+    }
+  }
+  static void TearDownTestSuite() { fs::remove_all(synth_); }
+
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("lidar_sgm_batch_map_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+             "_" + std::to_string(getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  /// A copy of the sequence with `poses` as its poses.txt (none when empty).
+  fs::path sequenceWith(const std::string& poses) {
+    const fs::path seq = root_ / "seq" / "00";
+    fs::create_directories(seq.parent_path());
+    fs::copy(synth_ / "dataset" / "sequences" / "00", seq, fs::copy_options::recursive);
+    if (!poses.empty()) std::ofstream(seq / "poses.txt") << poses;
+    return seq;
+  }
+  static fs::path datasetSequence() { return synth_ / "dataset" / "sequences" / "00"; }
+
+  static fs::path synth_;
+  fs::path root_;
+};
+
+fs::path BatchMap::synth_;
+
+TEST_F(BatchMap, SequenceWithPosesGivesAMapAndItsPictureAndAReRunThatSkipsEveryFrameTheSameBytes) {
+  const fs::path seq = sequenceWith(forwardPoses(2.0));
+  const fs::path out = root_ / "out";
+  const fs::path map = root_ / "map.pcd";
+  const std::string line = "-input_dir " + seq.string() + " -output_dir " + out.string() + " -map " + map.string();
+  RunResult r = batch(line);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("3 ok, 0 skipped, 0 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Map " + map.string() + ": "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" points, "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" MB, 3/3 frames, voxel 0.10 m"), std::string::npos) << r.output;
+  const std::string mapBytes = readText(map);
+  const std::string pictureBytes = readText(root_ / "map.png");
+  EXPECT_NE(mapBytes.find("FIELDS x y z rgb confidence"), std::string::npos);
+  EXPECT_NE(mapBytes.find("DATA binary\n"), std::string::npos);
+  EXPECT_EQ(pictureBytes.rfind("\x89PNG", 0), 0u) << "the picture from above is a PNG next to the map";
+
+  // The map's points are fewer than the frames' (merged into voxels), none lost.
+  pcl::PointCloud<PointXYZRGBConfidence> merged;
+  ASSERT_EQ(pcl::io::loadPCDFile(map.string(), merged), 0);
+  std::size_t framePoints = 0;
+  for (int i = 0; i < kFrames; ++i) {
+    pcl::PCLPointCloud2 frame;
+    ASSERT_EQ(pcl::io::loadPCDFile((out / ("00000" + std::to_string(i) + ".pcd")).string(), frame), 0);
+    framePoints += frame.width * frame.height;
+  }
+  EXPECT_GT(merged.size(), 1000u);
+  EXPECT_LT(merged.size(), framePoints);
+
+  r = batch(line);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("0 ok, 3 skipped, 0 failed"), std::string::npos) << r.output;
+  EXPECT_TRUE(readText(map) == mapBytes) << "the re-run's map differs";
+  EXPECT_TRUE(readText(root_ / "map.png") == pictureBytes) << "the re-run's picture differs";
+}
+
+TEST_F(BatchMap, ThePosesMoveTheMapAndTheCloudsFrameDoesNot) {
+  // One densification (poses found in the dataset's poses/00.txt), then maps built from its clouds
+  // by re-runs that skip every frame.
+  const fs::path dataset = root_ / "dataset";
+  fs::create_directories(dataset / "sequences");
+  fs::copy(datasetSequence(), dataset / "sequences" / "00", fs::copy_options::recursive);
+  fs::create_directories(dataset / "poses");
+  std::ofstream(dataset / "poses" / "00.txt") << forwardPoses(0.0);
+  const std::string input = "-input_dir " + (dataset / "sequences" / "00").string();
+  const fs::path out = root_ / "out";
+  RunResult r = batch(input + " -output_dir " + out.string() + " -map " + (root_ / "still.pcd").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+
+  // Every pose 5 m further forward and 1 m right: the whole map moves by as much.
+  std::string moved;
+  for (int i = 0; i < kFrames; ++i) moved += "1 0 0 1 0 1 0 0 0 0 1 5\n";
+  std::ofstream(root_ / "moved.txt") << moved;
+  r = batch(input + " -output_dir " + out.string() + " -map " + (root_ / "moved.pcd").string() + " -poses " +
+            (root_ / "moved.txt").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const Eigen::Vector3d shift = meanOf(root_ / "moved.pcd") - meanOf(root_ / "still.pcd");
+  EXPECT_LT((shift - Eigen::Vector3d(1, 0, 5)).norm(), 0.02) << shift.transpose();
+
+  // Clouds written in the camera frame give the same map, within the voxels' rounding.
+  const fs::path cameraOut = root_ / "camera";
+  r = batch(input + " -output_dir " + cameraOut.string() + " -frame camera -map " + (root_ / "camera.pcd").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const Eigen::Vector3d difference = meanOf(root_ / "camera.pcd") - meanOf(root_ / "still.pcd");
+  EXPECT_LT(difference.norm(), 0.02) << difference.transpose();
+}
+
+TEST_F(BatchMap, AFailedFrameIsLeftOutAndReported) {
+  const fs::path seq = sequenceWith(forwardPoses(1.0));
+  std::ofstream(seq / "velodyne" / "000001.bin", std::ios::binary | std::ios::trunc) << "truncated";
+  const fs::path map = root_ / "map.pcd";
+  const RunResult r =
+      batch("-input_dir " + seq.string() + " -output_dir " + (root_ / "out").string() + " -map " + map.string());
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("Map: 1 frame(s) left out (failed or not run): 000001"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2/3 frames"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(map));
+}
+
+TEST_F(BatchMap, AListFileTakesItsPosesFromPoses) {
+  const fs::path object = synth_ / "object";
+  std::ofstream list(root_ / "frames.txt");
+  for (int i = 0; i < 2; ++i) {
+    const std::string stem = "00000" + std::to_string(i);
+    list << object.string() << "/velodyne/" << stem << ".bin " << object.string() << "/image_2/" << stem << ".png "
+         << object.string() << "/image_3/" << stem << ".png " << object.string() << "/calib/" << stem << ".txt\n";
+  }
+  list.close();
+  std::ofstream(root_ / "poses.txt") << forwardPoses(3.0, 2);
+  const std::string base = "-list " + (root_ / "frames.txt").string() + " -output_dir " + (root_ / "out").string() +
+                           " -map " + (root_ / "map.pcd").string() + " -map_picture " + (root_ / "top.png").string();
+  RunResult r = batch(base);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("-map needs the frames' poses: give -poses FILE"), std::string::npos) << r.output;
+  r = batch(base + " -poses " + (root_ / "poses.txt").string() + " -map_voxel 0.5");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("2/2 frames, voxel 0.50 m"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(root_ / "top.png"));
+}
+
+TEST_F(BatchMap, RefusalsNameTheProblemBeforeAnyFrameIsRun) {
+  const fs::path seq = sequenceWith(forwardPoses(1.0));
+  const std::string base = "-input_dir " + seq.string() + " -output_dir " + (root_ / "out").string();
+  const std::string map = " -map " + (root_ / "map.pcd").string();
+  struct Case {
+    std::string arguments;
+    std::string message;
+  };
+  std::ofstream(root_ / "two.txt") << forwardPoses(1.0, 2);
+  for (const Case& c : {Case{map + " -shard 0/2", "option -map: the map needs every frame, but -shard 0/2"},
+                        Case{" -map " + (root_ / "map.xyz").string(), "option -map: "},
+                        Case{map + " -map_picture " + (root_ / "top.jpg").string(), "must be a .png file"},
+                        Case{map + " -map_voxel 0", "option -map_voxel: must be > 0"},
+                        Case{" -poses " + (root_ / "two.txt").string(), "option -poses needs -map OUT.pcd"},
+                        Case{map + " -poses " + (root_ / "two.txt").string(),
+                             "has 2 poses but the sequence has 3 frames"}}) {
+    const RunResult r = batch(base + c.arguments);
+    EXPECT_NE(r.exitCode, 0) << c.arguments << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.arguments << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(root_ / "out" / "000000.pcd")) << c.arguments << ": a frame was run";
+  }
+  // Several sequences: the map is of one drive.
+  const fs::path root = root_ / "two_sequences";
+  fs::create_directories(root / "sequences");
+  fs::copy(seq, root / "sequences" / "00", fs::copy_options::recursive);
+  fs::copy(seq, root / "sequences" / "01", fs::copy_options::recursive);
+  const RunResult r = batch("-input_dir " + root.string() + " -output_dir " + (root_ / "out").string() + map);
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("2 KITTI odometry sequences (00, 01)"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace lidar_sgm

@@ -1,0 +1,354 @@
+// lidar_sgm_batch -map's pieces: the poses file, where a frame's cloud lands in the world, the
+// voxel map's accumulation and the picture from above.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "batch/frame_calibration.hpp"
+#include "batch/frame_to_world.hpp"
+#include "batch/map_picture.hpp"
+#include "batch/poses.hpp"
+#include "batch/voxel_map.hpp"
+
+namespace lidar_sgm {
+namespace apps {
+namespace {
+namespace fs = std::filesystem;
+
+class MapPieces : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("lidar_sgm_map_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+             std::to_string(getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  std::string write(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+    return path.string();
+  }
+
+  /// The message of what `f` throws as std::invalid_argument ("" when it does not).
+  template <typename F>
+  static std::string errorOf(F f) {
+    try {
+      f();
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  fs::path root_;
+};
+
+const char* const kIdentity = "1 0 0 0 0 1 0 0 0 0 1 0\n";
+
+// --- poses ------------------------------------------------------------------------------------
+
+TEST_F(MapPieces, PosesFileGivesOneRowMajorPosePerLine) {
+  // Frame 1: turned 90 degrees about y (x' = z, z' = -x), at (1, 2, 3); exponents as KITTI prints.
+  const std::string path = write(root_ / "poses.txt", std::string(kIdentity) +
+                                                          "0.0 0 1.000000e+00 1 0 1 0 2 -1 0 0 3.0e0\n");
+  const std::vector<Eigen::Isometry3d> poses = readPoses(path);
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_TRUE(poses[0].isApprox(Eigen::Isometry3d::Identity()));
+  const Eigen::Vector3d moved = poses[1] * Eigen::Vector3d(1, 0, 0);
+  EXPECT_TRUE(moved.isApprox(Eigen::Vector3d(1, 2, 2))) << moved.transpose();
+  EXPECT_EQ(poses[1].matrix().row(3), Eigen::RowVector4d(0, 0, 0, 1));
+}
+
+TEST_F(MapPieces, EachBadPosesLineIsNamedByFileAndLine) {
+  struct Case {
+    const char* secondLine;
+    const char* problem;
+  };
+  for (const Case& c : {Case{"1 0 0 0 0 1 0 0 0 0 1", "expected 12 numbers (a row-major 3x4 pose), got 11"},
+                        Case{"1 0 0 0 0 1 0 0 0 0 1 0 5", "got 13"},
+                        Case{"", "got 0"},
+                        Case{"1 0 0 0 0 1 0 0 0 0 1 x", "'x' is not a number"},
+                        Case{"1 0 0 0 0 1 0 0 0 0 1 0.5m", "'0.5m' is not a number"},
+                        Case{"1 0 0 nan 0 1 0 0 0 0 1 0", "'nan' is not a finite number"},
+                        Case{"1 0 0 0 0 1 0 0 0 0 1 1e999", "'1e999' is not a finite number"},
+                        Case{"2 0 0 0 0 1 0 0 0 0 1 0", "not a rigid transform"},
+                        Case{"1 0 0 0 0 1 0 0 0 0 -1 0", "not a rigid transform"},      // a reflection
+                        Case{"1 0.01 0 0 0 1 0 0 0 0 1 0", "not a rigid transform"}}) {  // sheared beyond 1e-3
+    const std::string path = write(root_ / "poses.txt", std::string(kIdentity) + c.secondLine + "\n" + kIdentity);
+    const std::string error = errorOf([&] { readPoses(path); });
+    EXPECT_NE(error.find("poses file '" + path + "' line 2: "), std::string::npos) << c.secondLine << ": " << error;
+    EXPECT_NE(error.find(c.problem), std::string::npos) << c.secondLine << ": " << error;
+  }
+  // Within the tolerance: KITTI's printed digits.
+  const std::string path = write(root_ / "close.txt", "1 0.0004 0 0 -0.0004 1 0 0 0 0 1 0\n");
+  EXPECT_EQ(readPoses(path).size(), 1u);
+  EXPECT_NE(errorOf([&] { readPoses((root_ / "missing.txt").string()); }).find("cannot read the poses file"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { readPoses(write(root_ / "empty.txt", "")); }).find("has no pose"), std::string::npos);
+}
+
+/// Frames of a KITTI odometry sequence folder (only paths matter here).
+std::vector<Frame> odometryFrames(const fs::path& sequence, int count) {
+  std::vector<Frame> frames(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    Frame& f = frames[static_cast<std::size_t>(i)];
+    f.name = "00000" + std::to_string(i);
+    f.scan = (sequence / "velodyne" / (f.name + ".bin")).string();
+    f.calib = (sequence / "calib.txt").string();
+    f.calibFormat = CalibrationFormat::KittiOdometry;
+  }
+  return frames;
+}
+
+TEST_F(MapPieces, PosesAreFoundInTheSequenceFolderFirstThenInTheDatasetsPosesFolder) {
+  const fs::path sequence = root_ / "dataset" / "sequences" / "07";
+  const std::vector<Frame> frames = odometryFrames(sequence, 2);
+  EXPECT_EQ(findPosesFile(frames), "");
+  const std::string dataset = write(root_ / "dataset" / "poses" / "07.txt", std::string(kIdentity) + kIdentity);
+  EXPECT_EQ(fs::path(findPosesFile(frames)), fs::path(dataset));
+  const std::string own = write(sequence / "poses.txt", std::string(kIdentity) + kIdentity);
+  EXPECT_EQ(fs::path(findPosesFile(frames)), fs::path(own));
+  EXPECT_EQ(posesOfSequence(frames, "").size(), 2u);
+
+  std::vector<Frame> object = frames;
+  for (Frame& f : object) f.calibFormat = CalibrationFormat::Auto;
+  EXPECT_EQ(findPosesFile(object), "") << "only an odometry sequence has poses of its own";
+  EXPECT_NE(errorOf([&] { posesOfSequence(object, ""); }).find("give -poses FILE"), std::string::npos);
+  EXPECT_EQ(posesOfSequence(object, own).size(), 2u);
+}
+
+TEST_F(MapPieces, PoseCountMustBeTheFrameCountAndOneSequenceOnly) {
+  const fs::path sequence = root_ / "sequences" / "00";
+  const std::string poses = write(sequence / "poses.txt", std::string(kIdentity) + kIdentity + kIdentity);
+  const std::string error = errorOf([&] { posesOfSequence(odometryFrames(sequence, 2), ""); });
+  EXPECT_NE(error.find("'" + poses + "' has 3 poses but the sequence has 2 frames"), std::string::npos) << error;
+
+  std::vector<Frame> two = odometryFrames(sequence, 1);
+  const std::vector<Frame> other = odometryFrames(root_ / "sequences" / "01", 1);
+  two.insert(two.end(), other.begin(), other.end());
+  for (const std::string& given : {std::string(), poses}) {
+    const std::string several = errorOf([&] { posesOfSequence(two, given); });
+    EXPECT_NE(several.find("2 KITTI odometry sequences (00, 01)"), std::string::npos) << several;
+  }
+}
+
+// --- the transform ----------------------------------------------------------------------------
+
+/// A KITTI odometry calib.txt whose camera 2 is 0.06 m right of camera 0 (P2[0,3] = fx * 0.06,
+/// as KITTI's color camera), Tr the usual axes swap with an offset.
+std::string odometryCalibration() {
+  return "P0: 700 0 600 0 0 700 180 0 0 0 1 0\n"
+         "P1: 700 0 600 -378 0 700 180 0 0 0 1 0\n"
+         "P2: 700 0 600 42 0 700 180 0 0 0 1 0\n"
+         "P3: 700 0 600 -336 0 700 180 0 0 0 1 0\n"
+         "Tr: 0 -1 0 0 0 0 -1 -0.08 1 0 0 -0.27\n";
+}
+
+TEST_F(MapPieces, AFramesCloudLandsWhereItsPoseAndCalibrationPutIt) {
+  const std::string calibPath = write(root_ / "00" / "calib.txt", odometryCalibration());
+  Frame frame;
+  frame.calib = calibPath;
+  frame.calibFormat = CalibrationFormat::KittiOdometry;
+  const geometry::StereoCalibration calibration = readFrameCalibration(frame);
+  // The pose: turned 90 degrees about y (x' = z, z' = -x), at (1, 0, 5).
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  pose.translation() = Eigen::Vector3d(1, 0, 5);
+
+  // LiDAR (10, 2, 1) -> camera 0 by Tr: (-2, -1 - 0.08, 10 - 0.27) -> world: (9.73 + 1, -1.08, 2 + 5).
+  const Eigen::Vector3d lidarPoint(10, 2, 1);
+  const Eigen::Vector3d expected(10.73, -1.08, 7);
+  const Eigen::Isometry3d lidarToWorld =
+      cloudToWorld(pose, poseCameraFromLidar(frame, calibration), calibration, geometry::OutputFrame::Lidar);
+  EXPECT_LT((lidarToWorld * lidarPoint - expected).norm(), 1e-12) << (lidarToWorld * lidarPoint).transpose();
+
+  // The same point written in the camera frame is in camera 2 (its x is camera 0's + 0.06 m):
+  // it must land at the same place; had the pose been read as camera 2's, it would be 0.06 m off.
+  const Eigen::Vector3d cameraPoint = calibration.T_cam_lidar * lidarPoint;
+  EXPECT_LT((cameraPoint - Eigen::Vector3d(-2 + 0.06, -1.08, 9.73)).norm(), 1e-12) << cameraPoint.transpose();
+  const Eigen::Isometry3d cameraToWorld =
+      cloudToWorld(pose, poseCameraFromLidar(frame, calibration), calibration, geometry::OutputFrame::Camera);
+  EXPECT_LT((cameraToWorld * cameraPoint - expected).norm(), 1e-12) << (cameraToWorld * cameraPoint).transpose();
+
+  // Another layout has no camera 0: its poses are of the calibration's left camera.
+  Frame object = frame;
+  object.calibFormat = CalibrationFormat::Auto;
+  EXPECT_TRUE(poseCameraFromLidar(object, calibration).isApprox(calibration.T_cam_lidar));
+  EXPECT_NE(errorOf([&] { readKittiOdometryTr(write(root_ / "noTr.txt", "P0: 1 0 0 0 0 1 0 0 0 0 1 0\n")); })
+                .find("has no 'Tr:' line"),
+            std::string::npos);
+}
+
+// --- the voxel map ----------------------------------------------------------------------------
+
+PointXYZRGBConfidence point(float x, float y, float z, std::uint8_t r = 0, std::uint8_t g = 0, std::uint8_t b = 0,
+                            float confidence = 0.0f) {
+  PointXYZRGBConfidence p;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  p.rgba = 0xff000000u;
+  p.r = r;
+  p.g = g;
+  p.b = b;
+  p.confidence = confidence;
+  return p;
+}
+
+MapInput input(std::vector<PointXYZRGBConfidence> points, bool color = true, bool confidence = true) {
+  MapInput in;
+  for (const PointXYZRGBConfidence& p : points) in.points.push_back(p);
+  in.hasColor = color;
+  in.hasConfidence = confidence;
+  return in;
+}
+
+TEST_F(MapPieces, AVoxelKeepsTheCentroidMeanColorAndMeanConfidenceOfItsPoints) {
+  VoxelMap map(1.0);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  map.add(input({point(0.2f, 0.2f, 0.2f, 10, 20, 30, 0.2f), point(-0.5f, 0.0f, 0.0f, 1, 2, 3, 1.0f),
+                 point(nan, 0, 0), point(0.6f, 0.4f, 0.8f, 20, 40, 61, 0.6f)}),
+          Eigen::Isometry3d::Identity());
+  ASSERT_EQ(map.size(), 2u) << "(-0.5, 0, 0) is in voxel -1, not 0; NaN points are skipped";
+  EXPECT_TRUE(map.hasColor());
+  EXPECT_TRUE(map.hasConfidence());
+  const pcl::PointCloud<PointXYZRGBConfidence> points = map.points();
+  EXPECT_NEAR(points[0].x, 0.4f, 1e-6);
+  EXPECT_NEAR(points[0].y, 0.3f, 1e-6);
+  EXPECT_NEAR(points[0].z, 0.5f, 1e-6);
+  EXPECT_EQ(points[0].r, 15);
+  EXPECT_EQ(points[0].g, 30);
+  EXPECT_EQ(points[0].b, 46) << "45.5 rounds up";
+  EXPECT_NEAR(points[0].confidence, 0.4f, 1e-6);
+  EXPECT_EQ(points[1].x, -0.5f);
+  EXPECT_EQ(points[1].r, 1);
+
+  // The clouds' transform: shifted by 10 m in x, the same points land in new voxels.
+  Eigen::Isometry3d shift = Eigen::Isometry3d::Identity();
+  shift.translation() = Eigen::Vector3d(10, 0, 0);
+  map.add(input({point(0.2f, 0.2f, 0.2f)}), shift);
+  ASSERT_EQ(map.size(), 3u);
+  EXPECT_NEAR(map.points()[2].x, 10.2f, 1e-5);
+}
+
+TEST_F(MapPieces, FieldsAreKeptOnlyWhenEveryCloudHasThem) {
+  VoxelMap map(0.1);
+  EXPECT_FALSE(map.hasColor()) << "an empty map has nothing";
+  map.add(input({point(0, 0, 0, 9, 9, 9, 0.5f)}), Eigen::Isometry3d::Identity());
+  map.add(input({point(1, 0, 0)}, false, true), Eigen::Isometry3d::Identity());
+  EXPECT_FALSE(map.hasColor());
+  EXPECT_TRUE(map.hasConfidence());
+  EXPECT_EQ(map.points()[0].r, 0) << "no color when the map has none";
+}
+
+TEST_F(MapPieces, TheSameCloudsInTheSameOrderGiveTheSameMapBitForBitAndOrderOnlyMovesVoxels) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> coordinate(-20.0f, 20.0f);
+  std::vector<MapInput> clouds(3);
+  for (MapInput& cloud : clouds) {
+    cloud.hasColor = cloud.hasConfidence = true;
+    for (int i = 0; i < 5000; ++i) {
+      cloud.points.push_back(point(coordinate(random), coordinate(random) / 10, coordinate(random),
+                                   static_cast<std::uint8_t>(random() % 256), 7, 9, 0.5f));
+    }
+  }
+  const auto build = [&](const std::vector<int>& order) {
+    VoxelMap map(0.5);
+    for (int i : order) map.add(clouds[static_cast<std::size_t>(i)], Eigen::Isometry3d::Identity());
+    return map.points();
+  };
+  const pcl::PointCloud<PointXYZRGBConfidence> a = build({0, 1, 2});
+  const pcl::PointCloud<PointXYZRGBConfidence> b = build({0, 1, 2});
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.size() * sizeof(PointXYZRGBConfidence)), 0);
+
+  // Another order: the voxels of the first cloud come first; the same voxels, the same means.
+  const pcl::PointCloud<PointXYZRGBConfidence> c = build({2, 1, 0});
+  ASSERT_EQ(c.size(), a.size());
+  EXPECT_LT(std::abs(c[0].x - clouds[2].points[0].x), 0.5f) << "first voxel: the first cloud's first point";
+  const auto sorted = [](const pcl::PointCloud<PointXYZRGBConfidence>& m) {
+    std::vector<std::array<float, 4>> v;
+    for (const PointXYZRGBConfidence& p : m) v.push_back({p.x, p.y, p.z, static_cast<float>(p.r)});
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const std::vector<std::array<float, 4>> sa = sorted(a);
+  const std::vector<std::array<float, 4>> sc = sorted(c);
+  for (std::size_t i = 0; i < sa.size(); ++i) {
+    for (int k = 0; k < 3; ++k) ASSERT_NEAR(sa[i][k], sc[i][k], 1e-5) << i;
+    ASSERT_EQ(sa[i][3], sc[i][3]) << i;
+  }
+}
+
+TEST_F(MapPieces, AKilometreLongDriveKeepsEveryVoxelApart) {
+  // pcl::VoxelGrid numbers a box's voxels in 32 bits: 2 km x 2 km x 50 m at 0.1 m is 2e11 voxels,
+  // which it refuses. Here two points 0.1 m apart at the far corner stay two voxels.
+  VoxelMap map(0.1);
+  map.add(input({point(0, 0, 0), point(2000.05f, 50.05f, 2000.05f), point(2000.15f, 50.05f, 2000.05f)}),
+          Eigen::Isometry3d::Identity());
+  ASSERT_EQ(map.size(), 3u);
+  EXPECT_EQ(map.points()[2].x, 2000.15f);
+  EXPECT_NE(errorOf([] { VoxelMap(0.0); }).find("voxel size must be positive"), std::string::npos);
+  EXPECT_NE(errorOf([] { VoxelMap(-1.0); }).find("voxel size must be positive"), std::string::npos);
+  VoxelMap tiny(1e-9);
+  EXPECT_NE(errorOf([&] { tiny.add(input({point(1e9f, 0, 0)}), Eigen::Isometry3d::Identity()); }).find("too far out"),
+            std::string::npos);
+}
+
+// --- the picture from above -------------------------------------------------------------------
+
+TEST_F(MapPieces, TopViewShowsEachPixelsHighestPointForwardUpWithTheTrajectory) {
+  pcl::PointCloud<PointXYZRGBConfidence> map;
+  map.push_back(point(0.05f, 0.0f, 10.05f, 255, 0, 0));   // ground, red
+  map.push_back(point(0.05f, -2.0f, 10.05f, 0, 255, 0));  // 2 m up (y down), green: on top
+  map.push_back(point(0.05f, -2.0f, 10.05f, 0, 0, 255));  // as high, later: the first stays
+  map.push_back(point(5.05f, 0.0f, 0.05f, 0, 0, 255));    // nearer, right: lower in the picture
+  TopViewOptions options;
+  options.minMetresPerPixel = 0.1;
+  options.margin = 3;
+  const std::vector<Eigen::Vector3d> trajectory{{0.05, 0, 0.05}, {0.05, 0, 2.05}};
+  const TopView view = renderTopView(map, true, trajectory, options);
+  EXPECT_DOUBLE_EQ(view.metresPerPixel, 0.1);
+  ASSERT_EQ(view.image.type(), CV_8UC3);
+  EXPECT_EQ(view.image.cols, 3 + 51 + 3);  // x 0.05 .. 5.05 m
+  EXPECT_EQ(view.image.rows, 3 + 101 + 3);  // z 0.05 .. 10.05 m
+  EXPECT_EQ(view.image.at<cv::Vec3b>(3, 3), cv::Vec3b(0, 255, 0)) << "far (z = 10) is at the top";
+  EXPECT_EQ(view.image.at<cv::Vec3b>(3 + 100, 3 + 50), cv::Vec3b(255, 0, 0)) << "BGR blue, near right";
+  EXPECT_EQ(view.image.at<cv::Vec3b>(3 + 90, 3), cv::Vec3b(255, 255, 255)) << "the trajectory, 1 m ahead";
+  EXPECT_EQ(view.image.at<cv::Vec3b>(3 + 50, 3 + 25), cv::Vec3b(0, 0, 0)) << "background";
+
+  // Without colors: turbo of the height, the top point at the map's highest color.
+  const TopView heights = renderTopView(map, false, {}, options);
+  EXPECT_NE(heights.image.at<cv::Vec3b>(3, 3), heights.image.at<cv::Vec3b>(3 + 100, 3 + 50));
+  const TopView again = renderTopView(map, false, {}, options);
+  EXPECT_EQ(cv::norm(heights.image, again.image, cv::NORM_INF), 0.0);
+
+  // A 5 km drive: the long side is capped, the scale grows.
+  map.push_back(point(0.0f, 0.0f, 5000.0f));
+  const TopView far = renderTopView(map, true, {}, TopViewOptions{});
+  EXPECT_LE(far.image.rows, 2000);
+  EXPECT_GE(far.image.rows, 1999) << "the long side fills the picture";
+  EXPECT_LE(far.image.cols, 2000);
+  EXPECT_GT(far.metresPerPixel, 2.5);
+  EXPECT_NE(errorOf([] { renderTopView({}, true, {}); }).find("no point"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace apps
+}  // namespace lidar_sgm
