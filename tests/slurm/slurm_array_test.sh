@@ -18,8 +18,10 @@ readonly START_TIMEOUT_S=30
 readonly JOB_TIMEOUT_S=120
 
 say() { echo "slurm_array_test: $*"; }
+failure=""
 die() {
-  echo "slurm_array_test: FAILED: $*" >&2
+  failure="$*"
+  echo "slurm_array_test: FAILED: $failure" >&2
   exit 1
 }
 
@@ -78,6 +80,8 @@ cleanup() {
       echo "----- $log (last 40 lines)" >&2
       tail -n 40 "$log" >&2
     done
+    # Again below the logs, where a reader of the test's output looks first.
+    [ -z "$failure" ] || echo "slurm_array_test: FAILED: $failure" >&2
   fi
   rm -rf "$tmp"
   exit $rc
