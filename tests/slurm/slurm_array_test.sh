@@ -75,7 +75,7 @@ cleanup() {
     wait "${daemon_pids[i]}" 2> /dev/null
   done
   if [ $rc -ne 0 ] && [ $rc -ne 77 ]; then
-    for log in "$tmp"/*.log "$tmp"/*.stderr "$tmp"/jobs/*.out; do
+    for log in "$tmp"/*.log "$tmp"/*.stderr "$tmp"/jobs/*.out "$tmp"/lidar_sgm_densify-*.out; do
       [ -f "$log" ] || continue
       echo "----- $log (last 40 lines)" >&2
       tail -n 40 "$log" >&2
@@ -174,6 +174,10 @@ JobAcctGatherType=jobacct_gather/none
 AccountingStorageType=accounting_storage/none
 JobCompType=jobcomp/none
 ReturnToService=2
+# sbatch --wait polls after 2 s, then 8 s, then 32 s, the step growing only while it is under
+# MinJobAge/2 (so that a finished job is seen before it is purged): 5 keeps it polling every 2 s,
+# a few seconds an array instead of 10 to 42, and finished tasks stay listed for 5 s > 2 s.
+MinJobAge=5
 MailProg=/bin/true
 $node_line State=UNKNOWN
 PartitionName=test Nodes=$host Default=YES MaxTime=INFINITE State=UP
@@ -197,12 +201,16 @@ say "cluster up: node $host idle, slurmctld port $ctld_port, slurmd port $slurmd
 mapfile -t frames < <(cd "$tmp/out1" && ls -- *.pcd | sed 's/\.pcd$//')
 [ ${#frames[@]} -eq "$FRAMES" ] || die "the single-process run wrote ${#frames[@]} clouds, not $FRAMES"
 
-# Submits the array over the sequence into OUT2 and waits for it; sbatch --wait exits non-zero
-# when a task failed. One CPU a task, so that the array fits a single-core runner too.
+# Submits the array (--array=$1, then sbatch options) over the sequence into OUT2 and waits for it;
+# sbatch --wait exits non-zero when a task failed. Tasks run in $tmp, the submit folder.
 submit() {
-  LIDAR_SGM_BATCH="$batch_tool" timeout "$JOB_TIMEOUT_S" sbatch --wait --quiet --array="$1" --cpus-per-task=1 \
-    --output="$tmp/jobs/%A_%a.out" --chdir="$tmp" "$sbatch_script" -input_dir "$tmp/seq" -output_dir "$tmp/out2"
+  local array="$1"
+  shift
+  LIDAR_SGM_BATCH="$batch_tool" timeout "$JOB_TIMEOUT_S" sbatch --wait --quiet --array="$array" "$@" \
+    --chdir="$tmp" "$sbatch_script" -input_dir "$tmp/seq" -output_dir "$tmp/out2"
 }
+# One CPU a task and the logs in jobs/, so that the first array fits a single-core runner too.
+one_cpu=(--cpus-per-task=1 --output="$tmp/jobs/%A_%a.out")
 
 # Checks that OUT2 holds exactly OUT1's clouds, byte for byte, and no temporary file.
 check_clouds() {
@@ -229,7 +237,7 @@ manifest_records() {
 }
 
 start=$SECONDS
-submit "0-$((TASKS - 1))" || die "the array failed (sbatch --wait exit code $?)"
+submit "0-$((TASKS - 1))" "${one_cpu[@]}" || die "the array failed (sbatch --wait exit code $?)"
 say "array of $TASKS tasks done in $((SECONDS - start)) s"
 check_clouds "array"
 # Every frame exactly once over the shards, each densified.
@@ -239,10 +247,19 @@ expected="$(printf '%s ok\n' "${frames[@]}" | sort)"
   "got [$records], expected [$expected]"
 say "${#frames[@]} clouds byte-identical to the single-process run, every frame once in $TASKS manifests"
 
-# A re-submission after a lost frame: only that frame is redone, the same bytes again.
+# A re-submission after a lost frame: only that frame is redone, the same bytes again. With the
+# script's own #SBATCH defaults (2 CPUs a task, logs in the submit folder) where the node has 2 CPUs.
 lost="${frames[1]}"
 rm "$tmp/out2/$lost.pcd"
-submit "0-$((TASKS - 1))" || die "the re-submitted array failed (sbatch --wait exit code $?)"
+node_cpus="$(sed -E 's/.*CPUs=([0-9]+).*/\1/' <<< "$node_line")"
+if [ "$node_cpus" -ge 2 ]; then defaults=(); else defaults=("${one_cpu[@]}"); fi
+submit "0-$((TASKS - 1))" "${defaults[@]}" || die "the re-submitted array failed (sbatch --wait exit code $?)"
+if [ "$node_cpus" -ge 2 ]; then
+  for ((k = 0; k < TASKS; k++)); do
+    compgen -G "$tmp/lidar_sgm_densify-*_$k.out" > /dev/null ||
+      die "task $k of the array with the script's defaults left no lidar_sgm_densify-<job>_$k.out in the submit folder"
+  done
+fi
 check_clouds "re-submitted array"
 records="$(manifest_records | sort)"
 expected="$( (printf '%s skipped\n' "${frames[@]}" | grep -v "^$lost "; echo "$lost ok") | sort)"
@@ -251,7 +268,7 @@ expected="$( (printf '%s skipped\n' "${frames[@]}" | grep -v "^$lost "; echo "$l
 say "re-submission redid only frame $lost, byte-identical"
 
 # An array with a step has task ids that are not 0..N-1 shards: every task refuses to run.
-if submit "0-4:2" 2> /dev/null; then die "an array with a step (--array=0-4:2) was not refused"; fi
+if submit "0-4:2" "${one_cpu[@]}" 2> /dev/null; then die "an array with a step (--array=0-4:2) was not refused"; fi
 grep -q "not 3 consecutive ids" "$tmp"/jobs/*_4.out || die "the array with a step failed without saying why"
 say "an array with a step is refused"
 say "PASSED"
