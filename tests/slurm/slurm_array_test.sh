@@ -40,6 +40,12 @@ for f in "$batch_tool" "$synth_tool"; do [ -x "$f" ] || die "'$f' is not an exec
 # would need that user to exist and to own every folder below.
 [ "$(id -u)" -eq 0 ] ||
   die "needs root to run slurmctld, slurmd and munged (set LIDAR_SGM_SKIP_SLURM_TEST=1 to skip)"
+# The daemons live in sbin, which a non-login shell's PATH may lack. A test run inside a Slurm job
+# (or with SBATCH_* defaults set) must not hand that cluster's settings to this one's commands.
+export PATH="$PATH:/usr/sbin:/sbin"
+for variable in $(compgen -e | grep -E '^(SLURM|SBATCH|SALLOC|SRUN|SQUEUE|SINFO)_' || true); do
+  unset "$variable"
+done
 missing=()
 for program in munged munge unmunge slurmctld slurmd sbatch sinfo squeue scancel scontrol; do
   command -v "$program" > /dev/null || missing+=("$program")
@@ -198,7 +204,10 @@ say "cluster up: node $host idle, slurmctld port $ctld_port, slurmd port $slurmd
 "$synth_tool" -out "$tmp/seq" -n "$FRAMES" -width 248 -height 75 > /dev/null
 "$batch_tool" -input_dir "$tmp/seq" -output_dir "$tmp/out1" > "$tmp/single.log" 2>&1 ||
   die "the single-process run failed: $(cat "$tmp/single.log")"
-mapfile -t frames < <(cd "$tmp/out1" && ls -- *.pcd | sed 's/\.pcd$//')
+frames=()
+for cloud in "$tmp"/out1/*.pcd; do
+  [ -f "$cloud" ] && frames+=("$(basename "$cloud" .pcd)")
+done
 [ ${#frames[@]} -eq "$FRAMES" ] || die "the single-process run wrote ${#frames[@]} clouds, not $FRAMES"
 
 # Submits the array (--array=$1, then sbatch options) over the sequence into OUT2 and waits for it;
