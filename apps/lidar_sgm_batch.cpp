@@ -1,5 +1,6 @@
 // lidar_sgm_batch: every frame of a sequence densified in one call, as lidar_sgm_densify densifies
 // one (the same options, the same clouds byte for byte), resumable and sharded.
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -82,9 +83,9 @@ void printHelp(const char* program) {
       "                           once, with the same clouds as one process (default: 0/1)\n"
       "  -overwrite               redo the frames whose cloud exists (default: skip them)\n"
       "  -extension pcd|ply       the clouds' file type (default: pcd)\n"
-      "  -jobs J                  frames densified at once, each on its own worker (0 = one per hardware\n"
-      "                           thread); the matcher threads of each are -threads, else the hardware\n"
-      "                           threads shared out; neither changes a cloud (default: 0)\n"
+      "  -jobs J                  frames densified at once, each on its own worker (0 = one per CPU this\n"
+      "                           process may use); the matcher threads of each are -threads, else those\n"
+      "                           CPUs shared out; neither changes a cloud (default: 0)\n"
       "  -progress N              on a terminal, one progress line redrawn in place on stderr; otherwise a\n"
       "                           progress line every N frames (default: %d)\n"
       "  -image_size WxH          image size when neither the calibration nor an image gives it\n"
@@ -98,10 +99,14 @@ void printHelp(const char* program) {
       lidar_sgm::apps::outputOptionsHelp().c_str(), lidar_sgm::apps::mapOptionsHelp().c_str());
 }
 
-/// -jobs (0 = one per hardware thread) and the matcher threads of each (-threads, else the
-/// hardware threads shared out): results never depend on either.
+/// -jobs (0 = one per CPU this process may use) and the matcher threads of each (-threads, else
+/// those CPUs shared out): results never depend on either.
 void jobsAndThreads(const Arguments& args, int& jobs, int& threads) {
-  const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  // The CPUs this process may run on (a Slurm task's or a container's share), not the machine's.
+  cpu_set_t cpus;
+  const int hardware = sched_getaffinity(0, sizeof(cpus), &cpus) == 0
+                           ? std::max(1, CPU_COUNT(&cpus))
+                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   jobs = args.integer("jobs", 0);
   if (jobs < 0) throw std::invalid_argument("option -jobs: must be >= 0 (0 = one per hardware thread)");
   if (jobs == 0) jobs = hardware;

@@ -13,6 +13,7 @@ packages=(
   nlohmann-json3-dev           # lidar_sgm_eval's JSON results
   libcli11-dev                 # the tools' and the bench's command lines (CLI11, header-only)
   pkg-config                   # the install test checks lidar_sgm.pc
+  slurm-wlm munge              # the Slurm job array test: its own slurmctld, slurmd and munged
 )
 
 missing=()
@@ -27,6 +28,19 @@ fi
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 echo "install_deps: installing ${missing[*]}"
+
+# Debian's munge, slurmctld and slurmd start their services when installed (invoke-rc.d, or
+# deb-systemd-invoke under systemd): nothing here wants them running (the Slurm test starts its own
+# on private paths), and where they cannot start (a container without an init system) the failed
+# start may fail the install. A policy-rc.d answering 101 ("action forbidden") while apt-get runs keeps every service
+# from starting; one already there (Docker images ship one) is left as it is.
+policy=/usr/sbin/policy-rc.d
+if [ ! -e "$policy" ]; then
+  trap '$SUDO rm -f "$policy"' EXIT
+  printf '#!/bin/sh\n# scripts/install_deps.sh: no service starts while it installs packages.\nexit 101\n' |
+    $SUDO tee "$policy" > /dev/null
+  $SUDO chmod 755 "$policy"
+fi
 $SUDO apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
 echo "install_deps: done"
