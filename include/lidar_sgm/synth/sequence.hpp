@@ -37,7 +37,8 @@ struct SequenceOptions {
 void validate(const SequenceOptions& options);
 
 /// The street of the drive, long enough for the whole drive plus the sensors' range. Built once
-/// and shared by the frames (renderSequenceFrame(scene, ...)).
+/// and shared by the frames (renderSequenceFrame(scene, ...)). It follows from frame.seed and the
+/// drive's length ((frames - 1) * step): a longer drive of the same seed is another street.
 Scene makeSequenceScene(const SequenceOptions& options);
 
 /// Frame `index`'s options: the rig at (index * step, 0, 0) and a seed of its own for the noise.
