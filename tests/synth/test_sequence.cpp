@@ -185,7 +185,15 @@ TEST(SynthSequence, BadOptionsAreRejectedByName) {
   o.frame.beams = 32;
   EXPECT_NE(message(o).find("beams"), std::string::npos) << message(o);
   o.frame.beams = 64;
+  o.frame.lidarRangeNoise = -0.01;
+  EXPECT_NE(message(o).find("LiDAR range noise"), std::string::npos) << message(o);
+  o.frame.lidarRangeNoise = 0.02;
   EXPECT_EQ(message(o), "");
+  synth::FrameOptions outOfLane = o.frame;
+  outOfLane.rigPosition = {10.0, 3.0, 0.0};  // in the oncoming lane
+  EXPECT_THROW(synth::validate(outOfLane), std::invalid_argument);
+  outOfLane.rigPosition = {10.0, 0.0, 1.0};  // above the road
+  EXPECT_THROW(synth::validate(outOfLane), std::invalid_argument);
   EXPECT_THROW(synth::sequencePose(o, 2), std::invalid_argument);
   EXPECT_THROW(synth::renderSequenceFrame(o, -1), std::invalid_argument);
   EXPECT_THROW(synth::makeStreetScene(1, -5.0), std::invalid_argument);
