@@ -18,6 +18,7 @@
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/synth/encoding.hpp"
 #include "lidar_sgm/synth/frame.hpp"
+#include "lidar_sgm/synth/sequence.hpp"
 
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
@@ -27,6 +28,7 @@ namespace synth = lidar_sgm::synth;
 namespace {
 
 const synth::FrameOptions kDefaults;
+const synth::SequenceOptions kSequenceDefaults;
 
 void printHelp(const char* program) {
   std::printf(
@@ -40,10 +42,18 @@ void printHelp(const char* program) {
       "    depth_gt/  left depth, KITTI depth format (uint16, metres*256, 0 = none/sky)\n"
       "    mask/      objects (cars, poles, signs, trees) = 1, else 0 (uint8)\n"
       "  Frame i (id %%06d) is rendered with seed S+i; the same seed gives the same files.\n"
+      "  With -sequence N: N frames of one drive along the street of seed S, as a KITTI odometry\n"
+      "  sequence: the folders above (velodyne/ and image_2/ in the rig's frame at each step) and\n"
+      "    calib.txt  KITTI odometry calibration (P0 = P2 left, P1 = P3 right, Tr: LiDAR to camera 0)\n"
+      "    poses.txt  KITTI odometry poses: line i = 3x4 row-major, left camera i to left camera 0\n"
+      "    times.txt  frame times [s], 0.1 s apart\n"
+      "  The car drives straight along the street; the world is static, so the GT is exact in every frame.\n"
       "where options are:\n"
       "  -out DIR              output directory (created if missing)\n"
-      "  -n N                  number of frames, >= 1 (default: 1)\n"
-      "  -seed S               seed of the first frame, >= 0 (default: %u)\n"
+      "  -n N                  number of independent frames, >= 1 (default: 1)\n"
+      "  -sequence N           number of frames of one drive, in [1, 100000]; not with -n\n"
+      "  -step S               metres driven between frames of -sequence, in (0, 5] (default: %g, ~29 km/h at 10 Hz)\n"
+      "  -seed S               seed of the first frame (of the street with -sequence), >= 0 (default: %u)\n"
       "  -weather clear|rain   rain: fog, low contrast, wet road, noise, streaks; images only (default: clear)\n"
       "  -beams 64|128         64: HDL-64E (+2..-24.8 deg, 120 m); 128: +15..-25 deg, 245 m (default: %d)\n"
       "  -third_camera         also render a camera 0.20 m above the left one (image_up/, P_up)\n"
@@ -53,7 +63,8 @@ void printHelp(const char* program) {
       "  -h, --help            this help\n"
       "  --version             the tool's name and version\n"
       "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
-      program, kDefaults.seed, kDefaults.beams, kDefaults.baseline, kDefaults.width, kDefaults.height);
+      program, kSequenceDefaults.step, kDefaults.seed, kDefaults.beams, kDefaults.baseline, kDefaults.width,
+      kDefaults.height);
 }
 
 cv::Mat toMat(const lidar_sgm::Image<lidar_sgm::Rgb8>& image) {
@@ -97,6 +108,12 @@ void writeFileAtomically(const fs::path& target, const std::string& bytes) {
   }
 }
 
+std::string frameId(int index) {
+  char id[16];
+  std::snprintf(id, sizeof(id), "%06d", index);
+  return id;
+}
+
 void writeFrame(const fs::path& out, const std::string& id, const synth::Frame& frame, bool thirdCamera) {
   using lidar_sgm::io::writeImageAtomically;
   writeImageAtomically((out / "image_2" / (id + ".png")).string(), toMat(frame.left));
@@ -114,19 +131,7 @@ void writeFrame(const fs::path& out, const std::string& id, const synth::Frame& 
                        toMat(synth::encodeKittiDisparity(lidarDisparity.view()), CV_16UC1));
 }
 
-int run(int argc, char** argv) {
-  const Arguments args(argc, argv, {"out", "n", "seed", "weather", "beams", "baseline", "width", "height"},
-                       {"third_camera", "lidar_in_camera_view"});
-  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_synth", [&] { printHelp(argv[0]); })) return 0;
-  if (!args.positionals().empty()) {
-    throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
-  }
-  const std::string outText = args.text("out", "");
-  if (outText.empty()) throw std::invalid_argument("option -out DIR is required (see -h)");
-  const int count = args.integer("n", 1);
-  if (count < 1) throw std::invalid_argument("option -n: " + std::to_string(count) + " must be >= 1");
-  const int seed = args.integer("seed", static_cast<int>(kDefaults.seed));
-  if (seed < 0) throw std::invalid_argument("option -seed: " + std::to_string(seed) + " must be >= 0");
+synth::FrameOptions frameOptions(const Arguments& args) {
   synth::FrameOptions options;
   options.weather = synth::weatherFromString(args.text("weather", "clear"));
   options.beams = args.integer("beams", kDefaults.beams);
@@ -135,21 +140,23 @@ int run(int argc, char** argv) {
   options.width = args.integer("width", kDefaults.width);
   options.height = args.integer("height", kDefaults.height);
   options.lidarInCameraViewOnly = args.has("lidar_in_camera_view");
-  synth::validate(options);  // before anything is created: a rejected call leaves nothing behind
+  return options;
+}
 
-  const fs::path out(outText);
+void createFolders(const fs::path& out, bool thirdCamera) {
   std::vector<std::string> folders{"image_2", "image_3", "velodyne", "calib", "disp_gt", "depth_gt", "mask",
                                    "lidar_disp"};
-  if (options.thirdCamera) folders.push_back("image_up");
+  if (thirdCamera) folders.push_back("image_up");
   for (const std::string& folder : folders) fs::create_directories(out / folder);
+}
 
+void renderFrames(const fs::path& out, synth::FrameOptions options, int count, int seed) {
   for (int i = 0; i < count; ++i) {
-    char id[16];
-    std::snprintf(id, sizeof(id), "%06d", i);
+    const std::string id = frameId(i);
     options.seed = static_cast<std::uint32_t>(seed) + static_cast<std::uint32_t>(i);
     Timer timer;
-    std::printf("Rendering %s (seed %u, %s, %d beams)", id, options.seed, synth::toString(options.weather).c_str(),
-                options.beams);
+    std::printf("Rendering %s (seed %u, %s, %d beams)", id.c_str(), options.seed,
+                synth::toString(options.weather).c_str(), options.beams);
     std::fflush(stdout);
     const synth::Frame frame = synth::renderFrame(options);
     std::printf(" [done, %.0f ms : %dx%d, %zu LiDAR points]", timer.elapsedMs(), options.width, options.height,
@@ -159,6 +166,81 @@ int run(int argc, char** argv) {
     std::printf(", saved [done, %.0f ms]\n", saveTimer.elapsedMs());
   }
   std::printf("Wrote %d frame(s) to %s\n", count, out.string().c_str());
+}
+
+// One street, built once; the sequence files first, so that a folder with frames always has them.
+void renderSequence(const fs::path& out, const synth::SequenceOptions& options) {
+  const synth::StereoRig rig =
+      synth::StereoRig::kittiLike(options.frame.width, options.frame.height, options.frame.baseline);
+  writeFileAtomically(out / "calib.txt", synth::kittiOdometryCalibrationText(rig, options.frame.thirdCamera));
+  writeFileAtomically(out / "poses.txt", synth::kittiPosesText(options));
+  writeFileAtomically(out / "times.txt", synth::kittiTimesText(options));
+  Timer sceneTimer;
+  std::printf("Building the street (seed %u, %.1f m drive)", options.frame.seed, (options.frames - 1) * options.step);
+  std::fflush(stdout);
+  const synth::Scene scene = synth::makeSequenceScene(options);
+  std::printf(" [done, %.1f ms : %zu primitives]\n", sceneTimer.elapsedMs(), scene.primitives().size());
+  Timer total;
+  for (int i = 0; i < options.frames; ++i) {
+    const std::string id = frameId(i);
+    Timer timer;
+    std::printf("Rendering %s (x = %.2f m, %s, %d beams)", id.c_str(), i * options.step,
+                synth::toString(options.frame.weather).c_str(), options.frame.beams);
+    std::fflush(stdout);
+    const synth::Frame frame = synth::renderSequenceFrame(scene, options, i);
+    std::printf(" [done, %.0f ms : %dx%d, %zu LiDAR points]", timer.elapsedMs(), options.frame.width,
+                options.frame.height, frame.lidar.size());
+    Timer saveTimer;
+    writeFrame(out, id, frame, options.frame.thirdCamera);
+    std::printf(", saved [done, %.0f ms]\n", saveTimer.elapsedMs());
+  }
+  std::printf("Wrote a %d-frame sequence to %s [%.0f ms a frame]\n", options.frames, out.string().c_str(),
+              total.elapsedMs() / options.frames);
+}
+
+int run(int argc, char** argv) {
+  const Arguments args(argc, argv,
+                       {"out", "n", "sequence", "step", "seed", "weather", "beams", "baseline", "width", "height"},
+                       {"third_camera", "lidar_in_camera_view"});
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_synth", [&] { printHelp(argv[0]); })) return 0;
+  if (!args.positionals().empty()) {
+    throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
+  }
+  const std::string outText = args.text("out", "");
+  if (outText.empty()) throw std::invalid_argument("option -out DIR is required (see -h)");
+  const bool sequence = args.has("sequence");
+  if (sequence && args.has("n")) {
+    throw std::invalid_argument("options -sequence and -n exclude each other: -n N renders N independent streets, "
+                                "-sequence N one drive of N frames");
+  }
+  if (!sequence && args.has("step")) throw std::invalid_argument("option -step needs -sequence N");
+  const int seed = args.integer("seed", static_cast<int>(kDefaults.seed));
+  if (seed < 0) throw std::invalid_argument("option -seed: " + std::to_string(seed) + " must be >= 0");
+  const synth::FrameOptions options = frameOptions(args);
+  synth::validate(options);  // before anything is created: a rejected call leaves nothing behind
+  const fs::path out(outText);
+  if (sequence) {
+    synth::SequenceOptions drive;
+    drive.frame = options;
+    drive.frame.seed = static_cast<std::uint32_t>(seed);
+    drive.frames = args.integer("sequence", 0);
+    if (drive.frames < 1) {
+      throw std::invalid_argument("option -sequence: " + std::to_string(drive.frames) + " must be >= 1");
+    }
+    drive.step = args.number("step", kSequenceDefaults.step);
+    try {
+      synth::validate(drive);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("option -sequence/-step: ") + e.what());
+    }
+    createFolders(out, options.thirdCamera);
+    renderSequence(out, drive);
+    return 0;
+  }
+  const int count = args.integer("n", 1);
+  if (count < 1) throw std::invalid_argument("option -n: " + std::to_string(count) + " must be >= 1");
+  createFolders(out, options.thirdCamera);
+  renderFrames(out, options, count, seed);
   return 0;
 }
 

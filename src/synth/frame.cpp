@@ -30,13 +30,27 @@ void validate(const FrameOptions& o) {
     throw std::invalid_argument("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                 " must be in [32, 4096] x [32, 4096]");
   }
+  if (!(o.lidarRangeNoise >= 0.0 && o.lidarRangeNoise <= 1.0)) {
+    throw std::invalid_argument("LiDAR range noise " + std::to_string(o.lidarRangeNoise) + " must be in [0, 1] m");
+  }
+  const Eigen::Vector3d& p = o.rigPosition;
+  if (!(std::isfinite(p.x()) && std::abs(p.x()) < 1e6 && std::abs(p.y()) <= 1.0 && p.z() == 0.0)) {
+    throw std::invalid_argument("rig position (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " +
+                                std::to_string(p.z()) + ") must be on the road in the ego lane: |x| < 1e6, " +
+                                "|y| <= 1, z = 0 m");
+  }
 }
 
 Frame renderFrame(const FrameOptions& options) {
   validate(options);
+  return renderFrame(makeStreetScene(options.seed), options);
+}
+
+Frame renderFrame(const Scene& scene, const FrameOptions& options) {
+  validate(options);
   Frame frame;
   frame.rig = StereoRig::kittiLike(options.width, options.height, options.baseline);
-  const Scene scene = makeStreetScene(options.seed);
+  frame.rig.origin = options.rigPosition;
   RenderedView left = renderView(scene, frame.rig.left(), options.weather, options.seed ^ kLeftStream);
   frame.left = std::move(left.color);
   frame.depth = std::move(left.depth);
@@ -51,8 +65,9 @@ Frame renderFrame(const FrameOptions& options) {
       frame.disparity(x, y) = z > 0.0f ? static_cast<float>(focalBaseline / z) : 0.0f;
     }
   }
-  frame.lidar = scanLidar(scene, frame.rig.lidarPosition(), LidarOptions::forBeams(options.beams),
-                          options.seed ^ kLidarStream);
+  LidarOptions lidar = LidarOptions::forBeams(options.beams);
+  lidar.rangeNoiseSigma = options.lidarRangeNoise;
+  frame.lidar = scanLidar(scene, frame.rig.lidarPosition(), lidar, options.seed ^ kLidarStream);
   if (options.lidarInCameraViewOnly) frame.lidar = keepInCameraView(frame.lidar, frame.rig);
   return frame;
 }

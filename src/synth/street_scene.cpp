@@ -1,6 +1,8 @@
 // The procedural street: which primitives stand where. Sizes are those of a European city street.
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "lidar_sgm/synth/scene.hpp"
@@ -16,7 +18,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 class StreetBuilder {
  public:
-  explicit StreetBuilder(std::uint32_t seed) : rng_(seed), seed_(seed) {}
+  StreetBuilder(std::uint32_t seed, double driveLength) : rng_(seed), seed_(seed), driveLength_(driveLength) {}
 
   Scene build() {
     layOutRoad();
@@ -93,7 +95,7 @@ class StreetBuilder {
     road_.solidLinesY = {-0.5 * laneWidth_ - 0.1, 1.5 * laneWidth_ + 0.1};
     road_.dashLength = uniform(rng_, 2.5, 4.0);
     road_.dashPeriod = road_.dashLength * uniform(rng_, 2.0, 3.0);
-    road_.endX = uniform(rng_, 110.0, 180.0);
+    road_.endX = uniform(rng_, 110.0, 180.0) + driveLength_;
   }
 
   // Curb, sidewalk, facades, poles, trees and parked cars on one side; side = -1 right, +1 left.
@@ -233,6 +235,10 @@ class StreetBuilder {
 
   // Cars driving ahead in the ego lane and oncoming: occluders in the middle of the image.
   void addTraffic() {
+    if (driveLength_ > 0.0) {
+      addOncomingAlongDrive();
+      return;
+    }
     if (chance(rng_, 0.6)) {
       const double length = uniform(rng_, 4.0, 4.8);
       const double x = uniform(rng_, 10.0, 35.0);
@@ -249,8 +255,19 @@ class StreetBuilder {
     }
   }
 
+  // A drive: the ego lane stays free (the rig would drive through a car standing in it), and the
+  // other lane gets standing cars all along, so that every frame has some in view.
+  void addOncomingAlongDrive() {
+    for (double x = uniform(rng_, 12.0, 40.0); x < road_.endX - 20.0; x += uniform(rng_, 15.0, 60.0)) {
+      const double y = laneWidth_ + uniform(rng_, -0.3, 0.3);
+      const double length = uniform(rng_, 4.0, 4.8);
+      addCar(x, y, length, kPi + uniform(rng_, -0.03, 0.03));
+    }
+  }
+
   std::mt19937 rng_;
   std::uint32_t seed_;
+  double driveLength_ = 0.0;
   std::vector<Primitive> primitives_;
   std::vector<Material> materials_;
   RoadLayout road_;
@@ -263,7 +280,14 @@ class StreetBuilder {
 
 }  // namespace
 
-Scene makeStreetScene(std::uint32_t seed) { return StreetBuilder(seed).build(); }
+Scene makeStreetScene(std::uint32_t seed) { return StreetBuilder(seed, 0.0).build(); }
+
+Scene makeStreetScene(std::uint32_t seed, double driveLength) {
+  if (!(driveLength >= 0.0 && driveLength < 1e6)) {
+    throw std::invalid_argument("street drive length " + std::to_string(driveLength) + " must be in [0, 1e6) m");
+  }
+  return StreetBuilder(seed, driveLength).build();
+}
 
 }  // namespace synth
 }  // namespace lidar_sgm

@@ -168,6 +168,31 @@ TEST_F(BatchTool, OdometrySequenceGivesLidarSgmDensifysCloudsByteForByte) {
   EXPECT_EQ(temporaries(out), 0);
 }
 
+// lidar_sgm_synth -sequence writes the odometry layout itself (calib.txt with Tr:, poses.txt): the
+// batch tool reads it as a sequence, with the clouds lidar_sgm_densify makes from the frame's
+// object-format calibration.
+TEST_F(BatchTool, SyntheticDriveIsReadAsAnOdometrySequence) {
+  const fs::path drive = root_ / "drive";
+  const RunResult rendered = shell(std::string(LIDAR_SGM_SYNTH_TOOL) +
+                                   " -sequence 3 -seed 4 -width 320 -height 96 -out " + drive.string() + " 2>&1");
+  ASSERT_EQ(rendered.exitCode, 0) << rendered.output;
+  const fs::path out = root_ / "out";
+  const RunResult r = batch("-input_dir " + drive.string() + " -output_dir " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Summary: 3/3 frames: 3 ok, 0 skipped, 0 failed"), std::string::npos) << r.output;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path reference = root_ / ("ref_" + stem(i) + ".pcd");
+    const std::string d = drive.string();
+    const RunResult single = shell(std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + d + "/velodyne/" + stem(i) + ".bin " +
+                                   reference.string() + " -calib " + d + "/calib/" + stem(i) + ".txt -left " + d +
+                                   "/image_2/" + stem(i) + ".png -right " + d + "/image_3/" + stem(i) + ".png 2>&1");
+    ASSERT_EQ(single.exitCode, 0) << single.output;
+    const std::string cloud = readText(out / (stem(i) + ".pcd"));
+    ASSERT_FALSE(cloud.empty()) << stem(i);
+    EXPECT_TRUE(cloud == readText(reference)) << stem(i) << " differs from lidar_sgm_densify's";
+  }
+}
+
 TEST_F(BatchTool, ShardsAndThreadCountsGiveTheSameBytesAsOneProcess) {
   const fs::path one = root_ / "one";
   const fs::path sharded = root_ / "sharded";

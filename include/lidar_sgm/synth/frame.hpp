@@ -29,6 +29,10 @@ struct FrameOptions {
   int width = 1242;             ///< [px], in [32, 4096]; intrinsics scale with the size
   int height = 375;             ///< [px], in [32, 4096]
   bool lidarInCameraViewOnly = false;  ///< keep only points that project into the left image
+  double lidarRangeNoise = 0.02;  ///< LiDAR range noise sigma [m], in [0, 1]; 0 = exact ranges
+  /// Where the rig stands on the road (world frame, StereoRig::origin): x forward along the
+  /// street, |y| <= 1 (inside the ego lane), z = 0. A drive moves it along x (see sequence.hpp).
+  Eigen::Vector3d rigPosition = Eigen::Vector3d::Zero();
 };
 
 /// Throws std::invalid_argument naming the first bad option and its allowed values.
@@ -47,6 +51,11 @@ struct Frame {
 
 /// Deterministic: the same options give the same frame, bit for bit.
 Frame renderFrame(const FrameOptions& options);
+
+/// The frame in a given scene (e.g. one street shared by the frames of a drive); options.seed
+/// then only seeds the LiDAR noise, the sensor noise and the rain. renderFrame(options) is
+/// renderFrame(makeStreetScene(options.seed), options).
+Frame renderFrame(const Scene& scene, const FrameOptions& options);
 
 /// The points whose projection falls inside the left image (in front of the camera).
 std::vector<LidarPoint> keepInCameraView(const std::vector<LidarPoint>& points, const StereoRig& rig);

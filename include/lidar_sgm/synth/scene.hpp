@@ -93,6 +93,12 @@ class Scene {
   /// Nearest hit with t in (tMin, tMax); false for sky.
   bool intersect(const Ray& ray, double tMin, double tMax, Hit& hit) const;
 
+  /// Unsigned distance [m] from a world point to the nearest surface: a primitive's boundary
+  /// (exact for boxes and cylinders; ellipsoids to about a micrometre, see surface_distance.cpp)
+  /// or the road plane z = 0 (which ends at road().endX). The tests' independent check of the
+  /// ground truth and of the poses: a point that should lie on the scene is within rounding of 0.
+  double distanceToSurface(const Eigen::Vector3d& world) const;
+
   const std::vector<Primitive>& primitives() const { return primitives_; }
   const std::vector<Material>& materials() const { return materials_; }
   const RoadLayout& road() const { return road_; }
@@ -130,6 +136,13 @@ class Scene {
 /// sides with windows, parked and driving cars, lamp poles, traffic signs, trees, and a facade
 /// across the far end.
 Scene makeStreetScene(std::uint32_t seed);
+
+/// The same street, made `driveLength` metres longer so that a rig driving along +x from x = 0 to
+/// x = driveLength still has its sensors' full range ahead (the far facade stays 110..180 m past
+/// the last frame). The world is static, so nothing stands in the ego lane (y = 0) to drive
+/// into: oncoming cars stand in the other lane along the whole drive. driveLength = 0 is exactly
+/// makeStreetScene(seed); throws std::invalid_argument when driveLength is negative or not finite.
+Scene makeStreetScene(std::uint32_t seed, double driveLength);
 
 }  // namespace synth
 }  // namespace lidar_sgm
