@@ -13,6 +13,7 @@
 
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
+#include "common/output_paths.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "lidar_sgm/io/image_io.hpp"
@@ -84,28 +85,8 @@ cv::Mat toMat(const lidar_sgm::Image<T>& image, int type) {
   return cv::Mat(image.height(), image.width(), type, const_cast<T*>(image.data())).clone();
 }
 
-// Same pattern as io::writeImageAtomically: temporary file in the target's directory, then rename.
 void writeFileAtomically(const fs::path& target, const std::string& bytes) {
-  fs::path temporary = target;
-  temporary.replace_filename("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                             target.extension().string());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw std::runtime_error("cannot write '" + target.string() + "'");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temporary, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error("cannot write '" + target.string() + "': " + ec.message());
-  }
+  lidar_sgm::apps::writeFileAtomically(target.string(), bytes);
 }
 
 std::string frameId(int index) {
