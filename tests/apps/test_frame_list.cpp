@@ -253,11 +253,12 @@ TEST(Manifest, JsonLinesEscapeTextAndCarryEveryField) {
   r.frame = "00/000001";
   r.status = "failed";
   r.points = 12;
+  r.bytes = 4096;
   r.ms.load = 1.5;
   r.ms.match = 2.0;
   r.error = "cannot read 'x\"y'";
   EXPECT_EQ(toJsonLine(r),
-            "{\"frame\":\"00/000001\",\"status\":\"failed\",\"points\":12,\"load_ms\":1.5,\"project_ms\":0.0,"
+            "{\"frame\":\"00/000001\",\"status\":\"failed\",\"points\":12,\"bytes\":4096,\"load_ms\":1.5,\"project_ms\":0.0,"
             "\"match_ms\":2.0,\"reproject_ms\":0.0,\"save_ms\":0.0,\"total_ms\":3.5,\"error\":\"cannot read "
             "'x\\\"y'\"}");
 }
