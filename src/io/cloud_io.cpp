@@ -8,18 +8,20 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <istream>
-#include <sstream>
+#include <limits>
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
 #include <vector>
 
-#include <pcl/io/pcd_io.h>
+#include <pcl/io/pcd_io.h>  // the writers
 #include <pcl/io/ply_io.h>
 
 #include "atomic_file.hpp"
 #include "binary_pcd_writer.hpp"
-#include "memory_stream.hpp"
+#include "pcd_reader.hpp"
+#include "ply_reader.hpp"
+#include "text_values.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -119,7 +121,11 @@ template <typename T>
 float loadAs(const std::uint8_t* bytes) {
   T value;
   std::memcpy(&value, bytes, sizeof value);  // fields need not be aligned
-  return static_cast<float>(value);
+  if constexpr (std::is_same_v<T, double>) {
+    return detail::narrowToFloat(value);  // a double beyond float's range: the cast is undefined
+  } else {
+    return static_cast<float>(value);
+  }
 }
 
 using Loader = float (*)(const std::uint8_t*);
@@ -241,122 +247,36 @@ pcl::PointCloud<pcl::PointXYZI> toXyzi(const std::string& path, const pcl::PCLPo
   return cloud;
 }
 
-// ---- PCL readers --------------------------------------------------------------------------
-
-template <typename Call>
-int callPclReader(const std::string& path, Call call) {
-  try {
-    return call();
-  } catch (const std::exception& e) {
-    failRead(path, std::string("PCL: ") + e.what());
-  }
-}
-
-// PCL's ASCII reader skips a line with the wrong number of values (a file cut inside its last
-// line, say) with a warning, leaving a zero point, and still reports success. So each line of an
-// ASCII body (`body`, positioned at its start) is counted here.
-void checkAsciiBody(const std::string& source, const pcl::PCLPointCloud2& blob, std::istream& body) {
-  std::size_t valuesPerPoint = 0;
-  for (const pcl::PCLPointField& field : blob.fields) valuesPerPoint += std::max<std::size_t>(field.count, 1);
-  const std::uint64_t points = static_cast<std::uint64_t>(blob.width) * blob.height;
-  std::string line;
-  std::uint64_t point = 0;
-  while (point < points && std::getline(body, line)) {
-    std::istringstream values(line);
-    std::size_t count = 0;
-    for (std::string value; values >> value;) ++count;
-    if (count == 0) continue;  // PCL skips blank lines too
-    ++point;
-    if (count != valuesPerPoint) {
-      failRead(source, "ASCII point " + std::to_string(point) + " has " + std::to_string(count) +
-                           " values, expected " + std::to_string(valuesPerPoint) + ": truncated or malformed?");
-    }
-  }
-  if (point < points) {
-    failRead(source, "the header declares " + std::to_string(points) + " points but the data holds " +
-                         std::to_string(point) + ": truncated?");
-  }
-}
-
-[[noreturn]] void failTruncatedBinary(const std::string& source, const pcl::PCLPointCloud2& blob,
-                                      std::uint64_t available) {
-  failRead(source, "the data holds " + std::to_string(available) + " bytes but the header declares " +
-                       std::to_string(blob.width) + " x " + std::to_string(blob.height) + " points of " +
-                       std::to_string(blob.point_step) + " bytes: truncated?");
-}
-
-// readBodyBinary() reads through a bare pointer; PCL's file reader checks the file's size first
-// ("Corrupted PCD file"), so the same check is made here against the buffer's size.
-void requireBinaryBody(const std::string& source, const pcl::PCLPointCloud2& blob, const unsigned char* data,
-                       std::size_t size, unsigned int dataStart, bool compressed) {
-  const std::uint64_t available = size > dataStart ? size - dataStart : 0;
-  if (!compressed) {
-    if (blob.data.size() > available) failTruncatedBinary(source, blob, available);
-    return;
-  }
-  // binary_compressed: uint32 compressed size, uint32 uncompressed size, then the LZF block.
-  constexpr std::uint64_t kSizesBytes = 2 * sizeof(std::uint32_t);
-  if (available < kSizesBytes) failTruncatedBinary(source, blob, available);
-  std::uint32_t compressedSize = 0;
-  std::memcpy(&compressedSize, data + dataStart, sizeof compressedSize);  // host order, as PCL writes it
-  if (kSizesBytes + compressedSize > available) {
-    failRead(source, "the compressed block declares " + std::to_string(compressedSize) + " bytes but " +
-                         std::to_string(available - kSizesBytes) + " follow: truncated?");
-  }
-}
-
-/// The one PCD parser, for files and buffers: PCL's stream header reader and its body readers.
-pcl::PCLPointCloud2 readPcdBlob(const std::string& source, const unsigned char* data, std::size_t size,
-                                Eigen::Vector4f& origin, Eigen::Quaternionf& orientation) {
-  detail::MemoryStream stream(reinterpret_cast<const char*>(data), size);
-  pcl::PCDReader reader;
-  pcl::PCLPointCloud2 blob;
-  int version = 0;
-  int dataType = 0;
-  unsigned int dataStart = 0;
-  const int headerStatus = callPclReader(
-      source, [&] { return reader.readHeader(stream, blob, origin, orientation, version, dataType, dataStart); });
-  if (headerStatus < 0) failRead(source, "not a valid PCD file (its header cannot be parsed)");
-  // PCL 1.13 accepts an empty or non-PCD file as a header without fields, and reading its body
-  // then crashes (PCL issue #5854); such a file is refused here, first.
-  if (blob.fields.empty()) failRead(source, "not a PCD file (no FIELDS in its header)");
-  int status = 0;
-  if (dataType == 0) {
-    stream.clear();
-    stream.seekg(static_cast<std::streamoff>(dataStart));
-    status = callPclReader(source, [&] { return reader.readBodyASCII(stream, blob, version); });
-    if (status >= 0) {
-      stream.clear();
-      stream.seekg(static_cast<std::streamoff>(dataStart));
-      checkAsciiBody(source, blob, stream);
-    }
-  } else {
-    const bool compressed = dataType == 2;
-    requireBinaryBody(source, blob, data, size, dataStart, compressed);
-    status = callPclReader(source, [&] { return reader.readBodyBinary(data, blob, version, compressed, dataStart); });
-  }
-  if (status < 0) failRead(source, "the PCD data cannot be read: truncated or corrupted?");
-  return blob;
-}
+// ---- our readers ----------------------------------------------------------------------------
 
 pcl::PointCloud<pcl::PointXYZI> pcdFromBytes(const std::string& source, const unsigned char* data, std::size_t size) {
-  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
-  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-  const pcl::PCLPointCloud2 blob = readPcdBlob(source, data, size, origin, orientation);
-  pcl::PointCloud<pcl::PointXYZI> cloud = toXyzi(source, blob);
-  cloud.sensor_origin_ = origin;
-  cloud.sensor_orientation_ = orientation;
+  const detail::PcdContent content = detail::parsePcd(source, data, size, kMaxCloudPoints);
+  pcl::PointCloud<pcl::PointXYZI> cloud = toXyzi(source, content.blob);
+  cloud.sensor_origin_ = content.origin;
+  cloud.sensor_orientation_ = content.orientation;
   return cloud;
 }
 
-// PLY stays file-only: PCL 1.13's PLYReader (and its ply_parser) parse a file by name, with no
-// stream or buffer entry point.
-void readPlyBlob(const std::string& path, pcl::PCLPointCloud2& blob, Eigen::Vector4f& origin,
-                 Eigen::Quaternionf& orientation) {
-  pcl::PLYReader reader;
-  int version = 0;
-  const int status = callPclReader(path, [&] { return reader.read(path, blob, origin, orientation, version); });
-  if (status < 0) failRead(path, "not a valid PLY file, or truncated");
+// PCL's organized PLY: the vertices hold the valid points only, the range grid puts them in
+// place; an empty cell is a NaN point, as PCL's reader makes it.
+pcl::PointCloud<pcl::PointXYZI> plyFromBytes(const std::string& source, const unsigned char* data, std::size_t size) {
+  const detail::PlyContent content = detail::parsePly(source, data, size, kMaxCloudPoints);
+  pcl::PointCloud<pcl::PointXYZI> vertices = toXyzi(source, content.blob);
+  if (content.grid.empty()) return vertices;
+  pcl::PointCloud<pcl::PointXYZI> cloud;
+  cloud.resize(content.grid.size());
+  cloud.width = content.gridWidth;
+  cloud.height = content.gridHeight;
+  for (std::size_t i = 0; i < content.grid.size(); ++i) {
+    pcl::PointXYZI& p = cloud.points[i];
+    if (content.grid[i] >= 0) {
+      p = vertices.points[static_cast<std::size_t>(content.grid[i])];
+    } else {
+      p.x = p.y = p.z = p.intensity = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  setDenseness(cloud);
+  return cloud;
 }
 
 /// The one KITTI .bin decoder, for files and buffers.
@@ -365,6 +285,10 @@ pcl::PointCloud<pcl::PointXYZI> kittiBinFromBytes(const std::string& source, con
   if (size % kKittiPointBytes != 0) {
     failRead(source, "size " + std::to_string(size) + " bytes is not a multiple of " +
                          std::to_string(kKittiPointBytes) + " (x, y, z, reflectance float32): truncated?");
+  }
+  if (size / kKittiPointBytes > kMaxCloudPoints) {
+    failRead(source, std::to_string(size / kKittiPointBytes) + " points is more than the limit of " +
+                         std::to_string(kMaxCloudPoints) + " points per scan");
   }
   pcl::PointCloud<pcl::PointXYZI> cloud;
   cloud.resize(static_cast<std::size_t>(size / kKittiPointBytes));
@@ -478,18 +402,15 @@ pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path) {
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) failRead(path, ec.message());
   if (size == 0) failRead(path, "the file is empty");
-  if (extension == ".pcd") {
-    const std::vector<unsigned char> bytes = readAllBytes(path, size);
-    return pcdFromBytes(path, bytes.data(), bytes.size());
-  }
-  pcl::PCLPointCloud2 blob;
-  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
-  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-  readPlyBlob(path, blob, origin, orientation);
-  pcl::PointCloud<pcl::PointXYZI> cloud = toXyzi(path, blob);
-  cloud.sensor_origin_ = origin;
-  cloud.sensor_orientation_ = orientation;
-  return cloud;
+  const std::vector<unsigned char> bytes = readAllBytes(path, size);
+  if (extension == ".pcd") return pcdFromBytes(path, bytes.data(), bytes.size());
+  return plyFromBytes(path, bytes.data(), bytes.size());
+}
+
+pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t size, const std::string& source) {
+  if (size == 0) failRead(source, "the buffer is empty");
+  if (data == nullptr) failRead(source, "null data pointer for " + std::to_string(size) + " bytes");
+  return plyFromBytes(source, static_cast<const unsigned char*>(data), size);
 }
 
 pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path) {

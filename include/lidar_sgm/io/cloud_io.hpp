@@ -1,6 +1,6 @@
 #pragma once
 /// @file cloud_io.hpp  Point cloud files: KITTI velodyne .bin, PCD and PLY in; PCD (binary,
-/// binary-compressed or ASCII) and PLY (binary or ASCII) out (PCL io).
+/// binary-compressed or ASCII) and PLY (binary or ASCII) out (PCL io's writers).
 
 #include <cstddef>
 #include <cstdint>
@@ -14,6 +14,11 @@
 namespace lidar_sgm {
 namespace io {
 
+/// The most points a scan file may declare (KITTI's scans hold about 120 k; a 128-beam sensor
+/// about 260 k per turn): a header asking for more is refused, naming this limit, before
+/// anything is allocated.
+constexpr std::uint64_t kMaxCloudPoints = 50'000'000;
+
 /// KITTI velodyne scan: float32 little-endian x, y, z, reflectance per point. Throws
 /// std::runtime_error naming the file when it is missing, or when its size is not a multiple of
 /// 16 bytes (a truncated file is never read in part). An empty file gives an empty cloud.
@@ -23,16 +28,21 @@ pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path);
 pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::size_t size,
                                                        const std::string& source = "<buffer>");
 
-/// PCD (ASCII, binary or binary-compressed) or PLY with at least x, y, z fields (float or
-/// double); intensity is read when there is an "intensity" (or PLY "reflectance") field,
-/// else 0. RGB fields are accepted and ignored. Throws std::runtime_error naming the file for a
-/// missing or unreadable file or missing x/y/z fields.
+/// PCD (ASCII, binary or binary-compressed) or PLY (ascii, binary little or big endian) with at
+/// least x, y, z fields (float or double); intensity is read when there is an "intensity" (or
+/// PLY "reflectance") field, else 0. RGB fields are accepted and ignored. Our own strict parsers
+/// (not PCL's, which hostile files crashed): every header is checked against the file's size
+/// before anything is allocated. Throws std::runtime_error naming the file and the problem for a
+/// missing or unreadable file, a header it does not understand (duplicate or unknown keys,
+/// inconsistent counts, unsupported types), more than kMaxCloudPoints points, fewer bytes than
+/// the header declares, an ASCII value that does not parse (naming the line), or missing x/y/z.
 pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path);
 /// A PCD file's bytes (any of the three encodings) already in memory, read as readPcdOrPly()
-/// reads a .pcd file (the file reader goes through the same parser: PCL's stream header reader
-/// and body readers); `source` names them in messages. There is no PLY counterpart: PCL 1.13's
-/// PLYReader parses files by name only.
+/// reads a .pcd file (through the same parser); `source` names them in messages.
 pcl::PointCloud<pcl::PointXYZI> readPcdFromBuffer(const void* data, std::size_t size,
+                                                  const std::string& source = "<buffer>");
+/// The same for a PLY file's bytes.
+pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t size,
                                                   const std::string& source = "<buffer>");
 
 /// Picks the reader from the extension: .bin, .pcd, .ply (case-insensitive); any other
