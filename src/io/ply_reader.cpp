@@ -310,6 +310,35 @@ void skipElement(const std::string& source, const Header& header, const Element&
   }
 }
 
+// PCL's other layout record (use_camera): a camera element whose viewportx x viewporty is the
+// organized cloud's width x height, the vertices then being all of its points in row order.
+void readCamera(const std::string& source, const Header& header, const Element& camera, std::uint64_t vertices,
+                BodyReader& body, PlyContent& content) {
+  if (camera.count != 1) return skipElement(source, header, camera, body);
+  for (const Property& property : camera.properties) {
+    if (property.countType != 0) return skipElement(source, header, camera, body);
+  }
+  std::int64_t width = -1;
+  std::int64_t height = -1;
+  std::uint8_t scratch[8];
+  body.beginEntry();
+  for (const Property& property : camera.properties) {
+    const bool isViewport = property.name == "viewportx" || property.name == "viewporty";
+    if (!isViewport || !isIntegerType(property.type)) {
+      body.value(property.type, property.name, scratch);
+      continue;
+    }
+    (property.name == "viewportx" ? width : height) = body.integer(property.type, property.name);
+  }
+  body.endEntry();
+  if (width > 0 && height > 0 && static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) == vertices &&
+      content.grid.empty()) {
+    content.blob.width = static_cast<std::uint32_t>(width);
+    content.blob.height = static_cast<std::uint32_t>(height);
+    content.blob.row_step = content.blob.point_step * content.blob.width;
+  }
+}
+
 }  // namespace
 
 PlyContent parsePly(const std::string& source, const std::uint8_t* data, std::size_t size, std::uint64_t maxPoints) {
@@ -326,6 +355,8 @@ PlyContent parsePly(const std::string& source, const std::uint8_t* data, std::si
     const Element& element = header.elements[e];
     if (element.name == "range_grid") {
       readGrid(source, header, element, vertex.count, body, content);
+    } else if (element.name == "camera") {
+      readCamera(source, header, element, vertex.count, body, content);
     } else {
       skipElement(source, header, element, body);
     }

@@ -18,7 +18,8 @@ namespace io {
 namespace detail {
 
 /// The vertices as PCL's blob (one field per scalar property, packed, host order; width = the
-/// vertex count, height 1) and, for a file PCL wrote from an organized cloud, its layout: a
+/// vertex count, height 1, or a camera element's viewportx x viewporty where that is the vertex
+/// count) and, for a file PCL wrote from an organized cloud without a camera, its layout: a
 /// range_grid element of num_cols x num_rows cells (obj_info), each the index of its vertex or
 /// -1 for an empty cell.
 struct PlyContent {
@@ -30,7 +31,7 @@ struct PlyContent {
 
 /// Parses the `size` bytes at `data`. The vertex element must come first, with scalar properties
 /// (char ... double); other elements are walked through (in bounds) and ignored, except a
-/// range_grid, which gives the layout. Throws std::runtime_error
+/// range_grid or camera, which give the layout as PCL's reader takes it. Throws std::runtime_error
 /// "cannot read cloud '<source>': <problem>" for any header it does not understand, a vertex
 /// count above `maxPoints` or beyond the bytes present, a list property in the vertex element,
 /// or an ASCII line with the wrong number of values or a value that does not parse (naming the line).

@@ -1,0 +1,8 @@
+#include "fuzz_input.hpp"
+#include "lidar_sgm/io/calibration_io.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  lidar_sgm::fuzz::expectCleanRefusal([&] { lidar_sgm::io::readKittiCalibrationFromString(text, "fuzz.txt", 1242, 375); });
+  return 0;
+}
