@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake        # compiler and build system
   libopencv-dev                # io and tools: imgcodecs, imgproc
+  libyaml-cpp-dev              # io: the calibration YAML reader (OpenCV's parser hung on hostile files)
   libgtest-dev libgmock-dev    # tests
   libeigen3-dev                # geometry
   libhwy-dev                   # the fast cpu backend: SIMD with runtime dispatch (Highway)

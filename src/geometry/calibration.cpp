@@ -23,12 +23,23 @@ void StereoCalibration::validate() const {
     s << "focal lengths must be positive, got fx=" << fx() << " fy=" << fy();
     reject(s.str());
   }
+  if (fx() < kMinFocalLength || fx() > kMaxFocalLength || fy() < kMinFocalLength || fy() > kMaxFocalLength) {
+    std::ostringstream s;
+    s << "focal lengths must lie in [" << kMinFocalLength << ", " << kMaxFocalLength << "] px, got fx=" << fx()
+      << " fy=" << fy();
+    reject(s.str());
+  }
   if (K(0, 1) != 0.0 || K(1, 0) != 0.0 || K(2, 0) != 0.0 || K(2, 1) != 0.0 || K(2, 2) != 1.0) {
     reject("K must be [fx 0 cx; 0 fy cy; 0 0 1] (rectified, no skew)");
   }
   if (!std::isfinite(baseline) || !(baseline > 0.0)) {
     std::ostringstream s;
     s << "baseline must be positive and finite [m], got " << baseline;
+    reject(s.str());
+  }
+  if (baseline < kMinBaseline || baseline > kMaxBaseline) {
+    std::ostringstream s;
+    s << "baseline must lie in [" << kMinBaseline << ", " << kMaxBaseline << "] m, got " << baseline;
     reject(s.str());
   }
   const Eigen::Matrix4d& T = T_cam_lidar.matrix();

@@ -17,6 +17,7 @@
 #include <opencv2/core.hpp>
 
 #include "atomic_file.hpp"
+#include "calibration_yaml.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -191,10 +192,19 @@ StereoCalibration composeKitti(const Field& p2Field, const Field& p3Field, const
   StereoCalibration calibration;
   calibration.K << P2(0, 0), 0.0, P2(0, 2), 0.0, P2(1, 1), P2(1, 2), 0.0, 0.0, 1.0;
   if (!(P2(0, 0) > 0.0)) p2Field.fail("focal length fx must be positive, got " + numberText(P2(0, 0)));
+  if (P2(0, 0) < StereoCalibration::kMinFocalLength || P2(0, 0) > StereoCalibration::kMaxFocalLength) {
+    p2Field.fail("focal length fx must lie in [" + numberText(StereoCalibration::kMinFocalLength) + ", " +
+                 numberText(StereoCalibration::kMaxFocalLength) + "] px, got " + numberText(P2(0, 0)));
+  }
   calibration.baseline = (P2(0, 3) - P3(0, 3)) / P2(0, 0);
   if (!(calibration.baseline > 0.0)) {
     p3Field.fail("baseline (" + p2Field.key + "[0,3] - " + p3Field.key + "[0,3]) / fx must be positive [m], got " +
                  numberText(calibration.baseline));
+  }
+  if (calibration.baseline < StereoCalibration::kMinBaseline || calibration.baseline > StereoCalibration::kMaxBaseline) {
+    p3Field.fail("baseline (" + p2Field.key + "[0,3] - " + p3Field.key + "[0,3]) / fx must lie in [" +
+                 numberText(StereoCalibration::kMinBaseline) + ", " + numberText(StereoCalibration::kMaxBaseline) +
+                 "] m, got " + numberText(calibration.baseline));
   }
   const Eigen::Vector3d cameraOffset = calibration.K.triangularView<Eigen::Upper>().solve(P2.col(3));
   calibration.T_cam_lidar.matrix() =
@@ -222,43 +232,7 @@ int imageSide(const Field& field, double value) {
   return static_cast<int>(value);
 }
 
-// --- YAML --------------------------------------------------------------------------------
-
-cv::FileNode requireNode(const cv::FileStorage& storage, const std::string& source, const std::string& key) {
-  const cv::FileNode node = storage[key];
-  if (node.empty() || node.isNone()) throw std::runtime_error(source + ": missing key '" + key + "'");
-  return node;
-}
-
-int readYamlInt(const cv::FileStorage& storage, const std::string& source, const std::string& key) {
-  const cv::FileNode node = requireNode(storage, source, key);
-  if (!node.isInt()) throw std::runtime_error(source + ": key '" + key + "': expected an integer");
-  return static_cast<int>(node);
-}
-
-double readYamlReal(const cv::FileStorage& storage, const std::string& source, const std::string& key) {
-  const cv::FileNode node = requireNode(storage, source, key);
-  if (!node.isReal() && !node.isInt()) throw std::runtime_error(source + ": key '" + key + "': expected a number");
-  return static_cast<double>(node);
-}
-
-template <int Rows, int Cols>
-Eigen::Matrix<double, Rows, Cols> readYamlMatrix(const cv::FileStorage& storage, const std::string& source,
-                                                 const std::string& key) {
-  const cv::FileNode node = requireNode(storage, source, key);
-  cv::Mat m;
-  if (node.isMap()) node >> m;  // an opencv-matrix is a map (rows, cols, dt, data)
-  if (m.empty() || m.rows != Rows || m.cols != Cols || m.channels() != 1) {
-    throw std::runtime_error(source + ": key '" + key + "': expected a " + std::to_string(Rows) + "x" +
-                             std::to_string(Cols) + " matrix");
-  }
-  m.convertTo(m, CV_64F);
-  Eigen::Matrix<double, Rows, Cols> out;
-  for (int r = 0; r < Rows; ++r) {
-    for (int c = 0; c < Cols; ++c) out(r, c) = m.at<double>(r, c);
-  }
-  return out;
-}
+// --- YAML: written by cv::FileStorage, read by calibration_yaml.cpp -----------------------
 
 template <typename Derived>
 cv::Mat toCvMat(const Eigen::MatrixBase<Derived>& m) {
@@ -351,28 +325,10 @@ StereoCalibration readKittiRawCalibration(const std::string& camToCamPath, const
 }
 
 StereoCalibration readCalibrationYamlFromString(const std::string& text, const std::string& source) {
-  // FileStorage reads memory as a C string: an embedded NUL would silently cut the text short.
+  // A NUL would cut the text short for a C-string parser: refused rather than half read.
   if (text.find('\0') != std::string::npos) cannotRead(source, "the YAML text contains a NUL byte");
   if (trim(text).empty()) cannotRead(source, "the YAML text is empty");
-  cv::FileStorage storage;
-  try {
-    if (!storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY)) {
-      cannotRead(source, "not readable YAML");
-    }
-  } catch (const cv::Exception& e) {
-    // The parser's message carries the line of the syntax error.
-    cannotRead(source, "YAML syntax error: " + trim(e.what()));
-  }
-  StereoCalibration calibration;
-  try {
-    calibration.width = readYamlInt(storage, source, "width");
-    calibration.height = readYamlInt(storage, source, "height");
-    calibration.K = readYamlMatrix<3, 3>(storage, source, "K");
-    calibration.baseline = readYamlReal(storage, source, "baseline");
-    calibration.T_cam_lidar.matrix() = readYamlMatrix<4, 4>(storage, source, "T_cam_lidar");
-  } catch (const cv::Exception& e) {
-    cannotRead(source, e.what());
-  }
+  const StereoCalibration calibration = detail::parseCalibrationYaml(text, source);
   validateFromSource(calibration, "'" + source + "'");
   return calibration;
 }

@@ -1,6 +1,9 @@
 #include "lidar_sgm/io/image_io.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -16,11 +19,47 @@ namespace io {
 namespace fs = std::filesystem;
 namespace {
 
+[[noreturn]] void failTooLarge(const std::string& path, std::uint64_t width, std::uint64_t height) {
+  throw std::runtime_error("cannot read image '" + path + "': " + std::to_string(width) + "x" + std::to_string(height) +
+                           " pixels is more than the limit of " + std::to_string(kMaxImageSide) + "x" +
+                           std::to_string(kMaxImageSide));
+}
+
+std::uint32_t bigEndian32(const unsigned char* bytes) {
+  return (static_cast<std::uint32_t>(bytes[0]) << 24) | (static_cast<std::uint32_t>(bytes[1]) << 16) |
+         (static_cast<std::uint32_t>(bytes[2]) << 8) | static_cast<std::uint32_t>(bytes[3]);
+}
+
+// A PNG's size is in its first chunk (IHDR): checked before decoding, since OpenCV allocates
+// the whole image first (a 1 MB PNG of 30000x30000 asked for 8.6 GB, issue 15).
+void requirePngSizeWithinLimit(const std::string& path) {
+  unsigned char header[24] = {};
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(header), sizeof header);
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (in.gcount() != sizeof header || std::memcmp(header, kSignature, 8) != 0) return;  // not a PNG
+  if (std::memcmp(header + 12, "IHDR", 4) != 0) return;  // a broken PNG: OpenCV refuses it
+  const std::uint32_t width = bigEndian32(header + 16);
+  const std::uint32_t height = bigEndian32(header + 20);
+  const auto limit = static_cast<std::uint32_t>(kMaxImageSide);
+  if (width > limit || height > limit) failTooLarge(path, width, height);
+}
+
 cv::Mat readAny(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw std::runtime_error("cannot read image '" + path + "': no such file");
-  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  requirePngSizeWithinLimit(path);
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("cannot read image '" + path + "': " + e.what());
+  }
   if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': not a readable image file");
+  // Other formats are checked once decoded (OpenCV bounds them by CV_IO_MAX_IMAGE_PIXELS first).
+  if (image.cols > kMaxImageSide || image.rows > kMaxImageSide) {
+    failTooLarge(path, static_cast<std::uint64_t>(image.cols), static_cast<std::uint64_t>(image.rows));
+  }
   return image;
 }
 

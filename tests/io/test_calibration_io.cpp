@@ -378,5 +378,41 @@ TEST_F(CalibrationIo, YamlSyntaxErrorBecomesRuntimeErrorNamingTheFile) {
   expectErrorContaining([&] { io::readCalibrationYaml(file); }, {"'" + file + "'", "syntax"});
 }
 
+TEST_F(CalibrationIo, FocalLengthAndBaselineOutsideTheirSaneRangesNameTheKey) {
+  std::vector<std::string> lines = syntheticObjectLines();
+  lines[1] = "P2: 1e-300 0 600 0 0 700 180 0 0 0 1 0";  // issue 15: a 3.8e302 m baseline followed
+  lines[2] = "P3: 1e-300 0 600 -350 0 700 180 0 0 0 1 0";
+  const std::string tiny = writeLines("tiny.txt", lines);
+  expectErrorContaining([&] { io::readKittiCalibration(tiny, 640, 480); }, {tiny + ":2: key 'P2'", "[1, 1000000] px"});
+  lines = syntheticObjectLines();
+  lines[2] = "P3: 700 0 600 -350000 0 700 180 0 0 0 1 0";  // 500 m
+  const std::string wide = writeLines("wide.txt", lines);
+  expectErrorContaining([&] { io::readKittiCalibration(wide, 640, 480); }, {wide + ":3: key 'P3'", "[0.001, 100] m"});
+}
+
+TEST_F(CalibrationIo, YamlOutsideTheSaneRangesNamesTheFile) {
+  const std::string file = write("calib.yaml",
+                                 "%YAML:1.0\n---\nwidth: 10\nheight: 10\n"
+                                 "K: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+                                 "   data: [ 700., 0., 5., 0., 700., 5., 0., 0., 1. ]\nbaseline: 1e5\n"
+                                 "T_cam_lidar: !!opencv-matrix\n   rows: 4\n   cols: 4\n   dt: d\n"
+                                 "   data: [ 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1. ]\n");
+  expectErrorContaining([&] { io::readCalibrationYaml(file); }, {"'" + file + "'", "baseline must lie in"});
+}
+
+TEST_F(CalibrationIo, YamlMatrixOfTheWrongShapeOrNonFiniteNamesTheKey) {
+  const std::string head = "%YAML:1.0\n---\nwidth: 10\nheight: 10\nbaseline: 0.5\n"
+                           "T_cam_lidar: !!opencv-matrix\n   rows: 4\n   cols: 4\n   dt: d\n"
+                           "   data: [ 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1. ]\n";
+  const std::string shape = write("shape.yaml", head + "K: !!opencv-matrix\n   rows: 100000\n   cols: 100000\n"
+                                                       "   dt: d\n   data: [ 1. ]\n");
+  expectErrorContaining([&] { io::readCalibrationYaml(shape); }, {shape + ": key 'K'", "3x3"});
+  const std::string nan = write("nan.yaml", head + "K: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+                                                   "   data: [ 700., 0., 5., 0., .nan, 5., 0., 0., 1. ]\n");
+  expectErrorContaining([&] { io::readCalibrationYaml(nan); }, {nan + ": key 'K'", "data value 5"});
+  const std::string deep = write("deep.yaml", "%YAML:1.0\n---\nK: " + std::string(5000, '[') + "\n");
+  expectErrorContaining([&] { io::readCalibrationYaml(deep); }, {"'" + deep + "'", "syntax"});
+}
+
 }  // namespace
 }  // namespace lidar_sgm

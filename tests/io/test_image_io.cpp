@@ -103,5 +103,29 @@ TEST_F(ImageIo, ColorizedInvalidPixelsAreBlack) {
   EXPECT_NE(color.at<cv::Vec3b>(0, 1), cv::Vec3b(0, 0, 0));
 }
 
+TEST_F(ImageIo, PngLargerThanTheLimitIsRefusedFromItsHeader) {
+  // Issue 15: a 30000x30000 PNG took 8.6 GB before failing. Only the header matters here: the
+  // size is refused before OpenCV sees the file.
+  const unsigned char header[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                  0, 0, 0x75, 0x30, 0, 0, 0x75, 0x30, 8, 0, 0, 0, 0, 0, 0, 0, 0};
+  std::ofstream(path("huge.png"), std::ios::binary).write(reinterpret_cast<const char*>(header), sizeof header);
+  try {
+    io::readImage(path("huge.png"));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path("huge.png")), std::string::npos) << message;
+    EXPECT_NE(message.find("30000x30000 pixels is more than the limit of 16384x16384"), std::string::npos) << message;
+  }
+  EXPECT_THROW(io::readKittiDisparity(path("huge.png")), std::runtime_error);
+}
+
+TEST_F(ImageIo, PngAtTheLimitSideIsRead) {
+  cv::imwrite(path("wide.png"), cv::Mat(1, io::kMaxImageSide, CV_8UC1, cv::Scalar(7)));
+  const cv::Mat image = io::readImage(path("wide.png"));
+  EXPECT_EQ(image.cols, io::kMaxImageSide);
+  EXPECT_EQ(image.at<std::uint8_t>(0, io::kMaxImageSide - 1), 7);
+}
+
 }  // namespace
 }  // namespace lidar_sgm

@@ -16,6 +16,13 @@ namespace geometry {
 struct StereoCalibration {
   /// How far from orthonormal a rotation read from a file may be.
   static constexpr double kRotationTolerance = 1e-4;
+  /// Sane ranges, so that a typo (fx = 1e-300 gave a 3.8e302 m baseline, issue 15) is an error
+  /// and not a cloud: focal lengths [px] of real cameras lie well inside the first, stereo rigs'
+  /// baselines [m] (a phone's to a wide survey rig's) inside the second.
+  static constexpr double kMinFocalLength = 1.0;
+  static constexpr double kMaxFocalLength = 1e6;
+  static constexpr double kMinBaseline = 1e-3;
+  static constexpr double kMaxBaseline = 100.0;
 
   int width = 0;                  ///< rectified image size [px]
   int height = 0;
@@ -31,8 +38,8 @@ struct StereoCalibration {
   double focalBaseline() const { return K(0, 0) * baseline; }
   Eigen::Isometry3d T_lidar_cam() const { return T_cam_lidar.inverse(); }
 
-  /// Throws std::invalid_argument naming the first problem: non-positive image size, focal
-  /// length or baseline, a non-finite entry, skew, a K whose last row is not (0 0 1), or a
+  /// Throws std::invalid_argument naming the first problem: non-positive image size, a focal
+  /// length or baseline outside its sane range above, a non-finite entry, skew, a K whose last row is not (0 0 1), or a
   /// rotation that is not orthonormal with determinant +1 (max |R^T R - I| entry and
   /// |det R - 1| up to kRotationTolerance: calibration files print about 7 digits).
   void validate() const;

@@ -13,9 +13,14 @@
 namespace lidar_sgm {
 namespace io {
 
+/// The largest image side the readers accept [px] (issue 15): a PNG's size is checked from its
+/// header before anything is decoded, other formats once decoded.
+constexpr int kMaxImageSide = 16384;
+
 /// Reads an image as stored (8 or 16 bit; 1, 3 or 4 channels, BGR order), decoded once; toGray()
 /// and toColor() then give what matching and coloring need. Throws std::runtime_error naming
-/// the file when it is missing, not an image, or of another depth / channel count.
+/// the file when it is missing, not an image, larger than kMaxImageSide on a side, or of another
+/// depth / channel count.
 cv::Mat readImage(const std::string& path);
 /// An 8- or 16-bit gray, BGR or BGRA image as gray of the same depth (BGR2GRAY, OpenCV's BT.601
 /// weights; gray is returned as is, not copied). Throws std::invalid_argument for other depths or
