@@ -218,7 +218,10 @@ class BodyReader {
 // a separator per ASCII value. Checked before anything of `count` entries is allocated.
 void requireRoom(const std::string& source, const Element& element, std::uint64_t bytesPerEntry, Encoding encoding,
                  std::uint64_t available) {
-  const std::uint64_t perEntry = encoding == Encoding::Ascii ? 2 * element.properties.size() : bytesPerEntry;
+  // An entry without properties takes no bytes at all: counted as one, so that its count stays
+  // bounded by the file too (2^64 - 1 of them would loop for ever).
+  const std::uint64_t perEntry =
+      std::max<std::uint64_t>(1, encoding == Encoding::Ascii ? 2 * element.properties.size() : bytesPerEntry);
   if (saturatingMultiply(element.count, perEntry) > available + 1) {
     failCloudRead(source, "element '" + element.name + "' declares " + std::to_string(element.count) +
                               " entries but the data holds only " + std::to_string(available) + " bytes: truncated?");

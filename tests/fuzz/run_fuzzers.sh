@@ -18,9 +18,11 @@ fi
 # The readers need no matcher: the SIMD backend (minutes to compile with ASan) is left out.
 launcher=()
 if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+mkdir -p "$build"
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLIDAR_SGM_BUILD_TESTS=OFF \
-  -DLIDAR_SGM_WITH_CUDA=OFF -DLIDAR_SGM_WITH_CPU_BACKEND=OFF -DLIDAR_SGM_BUILD_FUZZERS=ON "${launcher[@]}" > "$build.configure.log"
-cmake --build "$build" -j2 --target "${targets[@]}" > "$build.build.log"
+  -DLIDAR_SGM_WITH_CUDA=OFF -DLIDAR_SGM_WITH_CPU_BACKEND=OFF -DLIDAR_SGM_BUILD_FUZZERS=ON "${launcher[@]}" \
+  > "$build/fuzz-configure.log" || { cat "$build/fuzz-configure.log"; exit 1; }
+cmake --build "$build" -j2 --target "${targets[@]}" > "$build/fuzz-build.log" || { tail -30 "$build/fuzz-build.log"; exit 1; }
 python3 "$root/tests/fuzz/make_seeds.py" "$build/seeds"
 
 printf '%-22s %12s %10s %8s %6s\n' target execs execs/s crashes hangs

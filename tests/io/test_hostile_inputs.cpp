@@ -57,6 +57,7 @@ INSTANTIATE_TEST_SUITE_P(
                       HostileFile{"ply_list_count_ffffffff.ply", "truncated"},
                       HostileFile{"ply_leading_space_cut.ply", "truncated"},
                       HostileFile{"ply_vertex_negative.ply", "with a count of 0 or more"},
+                      HostileFile{"ply_element_without_properties.ply", "declares 18446744073709551615 entries"},
                       HostileFile{"ply_ascii_not_a_number.ply", "line 9: value 'abc' of property 'x' is not a float32"}),
     [](const ::testing::TestParamInfo<HostileFile>& param) {
       std::string name = fs::path(param.param.name).stem().string();
