@@ -2,7 +2,6 @@
 // colored point cloud out. The command-line face of SGMDensification.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -14,6 +13,7 @@
 #include "common/arguments.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
+#include "common/output_transaction.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "densify/densify_options.hpp"
@@ -25,7 +25,6 @@
 #include "lidar_sgm/io/pcl_image.hpp"
 #include "lidar_sgm/pcl/sgm_densification.hpp"
 
-namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
 using lidar_sgm::apps::OutputOptions;
 using lidar_sgm::apps::parseImageSize;
@@ -132,7 +131,8 @@ std::size_t validPixels(const lidar_sgm::Image<std::int16_t>& disparity) {
 
 template <typename PointOutT>
 int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan,
-            const lidar_sgm::geometry::StereoCalibration& calibration, const cv::Mat& left, const cv::Mat& right) {
+            const lidar_sgm::geometry::StereoCalibration& calibration, const cv::Mat& left, const cv::Mat& right,
+            lidar_sgm::apps::OutputTransaction& outputs) {
   lidar_sgm::SGMDensification<pcl::PointXYZI, PointOutT> sgm;
   sgm.setInputCloud(scan);
   sgm.setCalibration(calibration);
@@ -197,29 +197,33 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   Timer saveTimer;
   std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
-  lidar_sgm::io::writeCloud(outPath, dense, out.format);
+  // Every output goes to its temporary; all are renamed into place once every one is written.
+  lidar_sgm::io::writeCloud(outputs.temporary(outPath), dense, out.format);
   if (!disparityPath.empty()) {
     std::printf(", %s", disparityPath.c_str());
-    lidar_sgm::io::writeImageAtomically(disparityPath, lidar_sgm::io::toKittiDisparity(used.view()));
+    lidar_sgm::io::writeImageAtomically(outputs.temporary(disparityPath), lidar_sgm::io::toKittiDisparity(used.view()));
   }
   if (!depthPath.empty()) {
     std::printf(", %s", depthPath.c_str());
-    lidar_sgm::io::writeImageAtomically(depthPath, lidar_sgm::io::toKittiDepth(sgm.getDepthImage().view()));
+    lidar_sgm::io::writeImageAtomically(outputs.temporary(depthPath),
+                                        lidar_sgm::io::toKittiDepth(sgm.getDepthImage().view()));
   }
   if (!confidencePath.empty()) {
     std::printf(", %s", confidencePath.c_str());
-    lidar_sgm::io::writeImageAtomically(confidencePath,
+    lidar_sgm::io::writeImageAtomically(outputs.temporary(confidencePath),
                                         lidar_sgm::io::toConfidencePng(sgm.getConfidenceImage().view()));
   }
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
     lidar_sgm::io::writeImageAtomically(
-        colorPath, lidar_sgm::io::colorizeDisparity(used.view(), range.minDisparity + range.numDisparities));
+        outputs.temporary(colorPath),
+        lidar_sgm::io::colorizeDisparity(used.view(), range.minDisparity + range.numDisparities));
   }
   if (!previewPath.empty()) {
     std::printf(", %s", previewPath.c_str());
-    lidar_sgm::io::writeImageAtomically(previewPath, preview);
+    lidar_sgm::io::writeImageAtomically(outputs.temporary(previewPath), preview);
   }
+  outputs.commit();
   std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
   return 0;
 }
@@ -248,7 +252,7 @@ int run(int argc, char** argv) {
   // Every output is checked before any work: extension, not an input, not another output.
   const std::vector<std::string> inputs{inputPath, calibPath, leftPath, rightPath};
   lidar_sgm::apps::requireOutput(outPath, {".pcd", ".ply"}, inputs);
-  std::vector<std::string> outputs{outPath};
+  std::vector<std::string> outputs{outPath};  // every file this run writes
   if (args.has("confidence") && args.has("no_confidence")) {
     throw std::invalid_argument("-confidence OUT.png needs the confidence, which -no_confidence turns off");
   }
@@ -263,19 +267,14 @@ int run(int argc, char** argv) {
     }
     outputs.push_back(path);
   }
-  for (const std::string& path : outputs) {
-    // Checked now, so a late failure cannot leave the cloud written and a picture missing.
-    const fs::path folder = fs::absolute(path).parent_path();
-    if (!fs::is_directory(folder)) {
-      throw std::invalid_argument("cannot write '" + path + "': the folder '" + folder.string() + "' does not exist");
-    }
-  }
   lidar_sgm::apps::checkDensifyOptions(args);  // reject bad options before loading anything
   checkedOutputOptions(args);
   previewOptionsFrom(args);
   int width = 0;
   int height = 0;
   if (args.has("image_size")) parseImageSize(args.text("image_size", ""), width, height);
+  // Folders and permissions checked now, before any work; nothing replaced until all are written.
+  lidar_sgm::apps::OutputTransaction transaction(outputs);
 
   Timer loadTimer;
   std::printf("Loading %s", inputPath.c_str());
@@ -310,14 +309,15 @@ int run(int argc, char** argv) {
       }
     }
     std::printf(" [done, %.0f ms : %dx%d]\n", imageTimer.elapsedMs(), left.cols, left.rows);
+    lidar_sgm::apps::requireOrganizedImage(leftPath, left);
   }
   // Colored output when an image can color it; with the confidence field unless it is off.
   if (args.has("no_confidence")) {
-    return left.empty() ? densify<pcl::PointXYZ>(args, scan, calibration, left, right)
-                        : densify<pcl::PointXYZRGB>(args, scan, calibration, left, right);
+    return left.empty() ? densify<pcl::PointXYZ>(args, scan, calibration, left, right, transaction)
+                        : densify<pcl::PointXYZRGB>(args, scan, calibration, left, right, transaction);
   }
-  return left.empty() ? densify<lidar_sgm::PointXYZConfidence>(args, scan, calibration, left, right)
-                      : densify<lidar_sgm::PointXYZRGBConfidence>(args, scan, calibration, left, right);
+  return left.empty() ? densify<lidar_sgm::PointXYZConfidence>(args, scan, calibration, left, right, transaction)
+                      : densify<lidar_sgm::PointXYZRGBConfidence>(args, scan, calibration, left, right, transaction);
 }
 
 }  // namespace

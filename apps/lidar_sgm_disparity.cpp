@@ -10,6 +10,7 @@
 #include "common/filter_options.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
+#include "common/output_transaction.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
@@ -105,6 +106,11 @@ int run(int argc, char** argv) {
   const lidar_sgm::OutputFilterOptions outputFilters = lidar_sgm::apps::outputFiltersFrom(args);
   const lidar_sgm::Backend backend = lidar_sgm::apps::backendFrom(args);
   const bool fixedRange = lidar_sgm::apps::fixedDisparityRange(args);
+  // Folders and permissions checked now, before any work; nothing replaced until all are written.
+  std::vector<std::string> outputPaths{outPath};
+  if (!colorPath.empty()) outputPaths.push_back(colorPath);
+  if (!confidencePath.empty()) outputPaths.push_back(confidencePath);
+  lidar_sgm::apps::OutputTransaction outputs(outputPaths);
 
   Timer loadTimer;
   std::printf("Loading %s", leftPath.c_str());
@@ -160,17 +166,21 @@ int run(int argc, char** argv) {
 
   Timer saveTimer;
   std::printf("Saving %s", outPath.c_str());
-  lidar_sgm::io::writeImageAtomically(outPath, lidar_sgm::io::toKittiDisparity(disparity.view()));
+  // Every output goes to its temporary; all are renamed into place once every one is written.
+  lidar_sgm::io::writeImageAtomically(outputs.temporary(outPath), lidar_sgm::io::toKittiDisparity(disparity.view()));
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
     const lidar_sgm::Parameters& used = densifier.usedParameters();  // the range matched, e.g. from the LiDAR
     const double maxDisparity = used.minDisparity + used.numDisparities;
-    lidar_sgm::io::writeImageAtomically(colorPath, lidar_sgm::io::colorizeDisparity(disparity.view(), maxDisparity));
+    lidar_sgm::io::writeImageAtomically(outputs.temporary(colorPath),
+                                        lidar_sgm::io::colorizeDisparity(disparity.view(), maxDisparity));
   }
   if (!confidencePath.empty()) {
     std::printf(", %s", confidencePath.c_str());
-    lidar_sgm::io::writeImageAtomically(confidencePath, lidar_sgm::io::toConfidencePng(densifier.confidence().view()));
+    lidar_sgm::io::writeImageAtomically(outputs.temporary(confidencePath),
+                                        lidar_sgm::io::toConfidencePng(densifier.confidence().view()));
   }
+  outputs.commit();
   std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
   return 0;
 }

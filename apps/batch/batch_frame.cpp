@@ -36,6 +36,7 @@ FrameData load(const Frame& frame, int width, int height) {
   }
   if (!frame.left.empty()) {
     data.left = io::readImage(frame.left);
+    requireOrganizedImage(frame.left, data.left);
     if (!frame.right.empty()) {
       data.right = io::readImage(frame.right);
       if (data.right.size() != data.left.size()) {

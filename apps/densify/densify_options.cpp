@@ -51,6 +51,20 @@ void parseImageSize(const std::string& text, int& width, int& height, const char
   if (width <= 0 || height <= 0) {
     throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' must be positive");
   }
+  // The images' limit (io::kMaxImageSide): a larger size would only fail later, allocating.
+  if (width > io::kMaxImageSide || height > io::kMaxImageSide) {
+    throw std::invalid_argument(std::string("option -") + option + ": '" + text + "' is larger than the limit of " +
+                                std::to_string(io::kMaxImageSide) + "x" + std::to_string(io::kMaxImageSide) +
+                                " pixels");
+  }
+}
+
+void requireOrganizedImage(const std::string& path, const cv::Mat& image) {
+  if (image.cols < 2 || image.rows < 2) {
+    throw std::invalid_argument("the image '" + path + "' is " + std::to_string(image.cols) + "x" +
+                                std::to_string(image.rows) +
+                                ": an image needs at least 2x2 pixels (it becomes an organized point cloud)");
+  }
 }
 
 std::set<std::string> densifyValueOptions() {

@@ -39,6 +39,10 @@ void parseImageSize(const std::string& text, int& width, int& height, const char
 /// Option names of the method and the cloud it writes: the matcher's, the output filters',
 /// -format, -frame, -max_depth, -stride, -voxel, -image_size (values) and -keep_organized,
 /// -no_occlusion_filter, -no_crop_to_scan (flags).
+/// Throws std::invalid_argument naming `path` when `image` has fewer than 2 rows or columns: PCL
+/// takes a cloud of height 1 for an unorganized one, so such an image cannot color a cloud.
+void requireOrganizedImage(const std::string& path, const cv::Mat& image);
+
 std::set<std::string> densifyValueOptions();
 std::set<std::string> densifyFlagOptions();
 

@@ -17,6 +17,10 @@ void StereoCalibration::validate() const {
   if (width <= 0 || height <= 0) {
     reject("image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
   }
+  if (width > kMaxImageSide || height > kMaxImageSide) {
+    reject("image size " + std::to_string(width) + "x" + std::to_string(height) + " is larger than the limit of " +
+           std::to_string(kMaxImageSide) + "x" + std::to_string(kMaxImageSide) + " pixels");
+  }
   if (!K.allFinite()) reject("K has a non-finite entry");
   if (!(fx() > 0.0) || !(fy() > 0.0)) {
     std::ostringstream s;

@@ -249,8 +249,9 @@ pcl::PointCloud<pcl::PointXYZI> toXyzi(const std::string& path, const pcl::PCLPo
 
 // ---- our readers ----------------------------------------------------------------------------
 
-pcl::PointCloud<pcl::PointXYZI> pcdFromBytes(const std::string& source, const unsigned char* data, std::size_t size) {
-  const detail::PcdContent content = detail::parsePcd(source, data, size, kMaxCloudPoints);
+pcl::PointCloud<pcl::PointXYZI> pcdFromBytes(const std::string& source, const unsigned char* data, std::size_t size,
+                                             std::uint64_t maxPoints = kMaxCloudPoints) {
+  const detail::PcdContent content = detail::parsePcd(source, data, size, maxPoints);
   pcl::PointCloud<pcl::PointXYZI> cloud = toXyzi(source, content.blob);
   cloud.sensor_origin_ = content.origin;
   cloud.sensor_orientation_ = content.orientation;
@@ -259,8 +260,9 @@ pcl::PointCloud<pcl::PointXYZI> pcdFromBytes(const std::string& source, const un
 
 // PCL's organized PLY: the vertices hold the valid points only, the range grid puts them in
 // place; an empty cell is a NaN point, as PCL's reader makes it.
-pcl::PointCloud<pcl::PointXYZI> plyFromBytes(const std::string& source, const unsigned char* data, std::size_t size) {
-  const detail::PlyContent content = detail::parsePly(source, data, size, kMaxCloudPoints);
+pcl::PointCloud<pcl::PointXYZI> plyFromBytes(const std::string& source, const unsigned char* data, std::size_t size,
+                                             std::uint64_t maxPoints = kMaxCloudPoints) {
+  const detail::PlyContent content = detail::parsePly(source, data, size, maxPoints);
   pcl::PointCloud<pcl::PointXYZI> vertices = toXyzi(source, content.blob);
   if (content.grid.empty()) return vertices;
   pcl::PointCloud<pcl::PointXYZI> cloud;
@@ -280,16 +282,21 @@ pcl::PointCloud<pcl::PointXYZI> plyFromBytes(const std::string& source, const un
 }
 
 /// The one KITTI .bin decoder, for files and buffers.
-pcl::PointCloud<pcl::PointXYZI> kittiBinFromBytes(const std::string& source, const unsigned char* bytes,
-                                                  std::uint64_t size) {
+/// A .bin file's size, checked before its bytes are read: whole records, at most `maxPoints`.
+void checkKittiBinSize(const std::string& source, std::uint64_t size, std::uint64_t maxPoints) {
   if (size % kKittiPointBytes != 0) {
     failRead(source, "size " + std::to_string(size) + " bytes is not a multiple of " +
                          std::to_string(kKittiPointBytes) + " (x, y, z, reflectance float32): truncated?");
   }
-  if (size / kKittiPointBytes > kMaxCloudPoints) {
+  if (size / kKittiPointBytes > maxPoints) {
     failRead(source, std::to_string(size / kKittiPointBytes) + " points is more than the limit of " +
-                         std::to_string(kMaxCloudPoints) + " points per scan");
+                         std::to_string(maxPoints) + " points per scan");
   }
+}
+
+pcl::PointCloud<pcl::PointXYZI> kittiBinFromBytes(const std::string& source, const unsigned char* bytes,
+                                                  std::uint64_t size, std::uint64_t maxPoints = kMaxCloudPoints) {
+  checkKittiBinSize(source, size, maxPoints);
   pcl::PointCloud<pcl::PointXYZI> cloud;
   cloud.resize(static_cast<std::size_t>(size / kKittiPointBytes));
   cloud.width = static_cast<std::uint32_t>(cloud.size());  // resize(0) would leave height 0
@@ -373,13 +380,14 @@ void writeAtomically(const std::string& path, Write write) {
 
 }  // namespace
 
-pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path) {
+pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path, std::uint64_t maxPoints) {
   requireRegularFile(path);
   std::error_code ec;
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) failRead(path, ec.message());
+  checkKittiBinSize(path, size, maxPoints);  // before reading: a huge file is not loaded to be refused
   const std::vector<unsigned char> bytes = readAllBytes(path, size);
-  return kittiBinFromBytes(path, bytes.data(), size);
+  return kittiBinFromBytes(path, bytes.data(), size, maxPoints);
 }
 
 pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::size_t size,
@@ -394,7 +402,7 @@ pcl::PointCloud<pcl::PointXYZI> readPcdFromBuffer(const void* data, std::size_t 
   return pcdFromBytes(source, static_cast<const unsigned char*>(data), size);
 }
 
-pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path) {
+pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path, std::uint64_t maxPoints) {
   requireRegularFile(path);
   const std::string extension = lowerExtension(path);
   if (extension != ".pcd" && extension != ".ply") failRead(path, "expected a .pcd or .ply file");
@@ -403,8 +411,8 @@ pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path) {
   if (ec) failRead(path, ec.message());
   if (size == 0) failRead(path, "the file is empty");
   const std::vector<unsigned char> bytes = readAllBytes(path, size);
-  if (extension == ".pcd") return pcdFromBytes(path, bytes.data(), bytes.size());
-  return plyFromBytes(path, bytes.data(), bytes.size());
+  if (extension == ".pcd") return pcdFromBytes(path, bytes.data(), bytes.size(), maxPoints);
+  return plyFromBytes(path, bytes.data(), bytes.size(), maxPoints);
 }
 
 pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t size, const std::string& source) {
@@ -413,10 +421,10 @@ pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t 
   return plyFromBytes(source, static_cast<const unsigned char*>(data), size);
 }
 
-pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path) {
+pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path, std::uint64_t maxPoints) {
   const std::string extension = lowerExtension(path);
-  if (extension == ".bin") return readKittiBin(path);
-  if (extension == ".pcd" || extension == ".ply") return readPcdOrPly(path);
+  if (extension == ".bin") return readKittiBin(path, maxPoints);
+  if (extension == ".pcd" || extension == ".ply") return readPcdOrPly(path, maxPoints);
   failRead(path, "unsupported extension '" + extension + "' (accepted: .bin, .pcd, .ply)");
 }
 

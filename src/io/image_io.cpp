@@ -1,5 +1,7 @@
 #include "lidar_sgm/io/image_io.hpp"
 
+#include "lidar_sgm/geometry/calibration.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -13,6 +15,9 @@
 
 #include "atomic_file.hpp"
 #include <unistd.h>
+
+static_assert(lidar_sgm::io::kMaxImageSide == lidar_sgm::geometry::StereoCalibration::kMaxImageSide,
+              "one image size limit for images and calibrations");
 
 namespace lidar_sgm {
 namespace io {

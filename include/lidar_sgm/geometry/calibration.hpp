@@ -19,6 +19,8 @@ struct StereoCalibration {
   /// Sane ranges, so that a typo (fx = 1e-300 gave a 3.8e302 m baseline, issue 15) is an error
   /// and not a cloud: focal lengths [px] of real cameras lie well inside the first, stereo rigs'
   /// baselines [m] (a phone's to a wide survey rig's) inside the second.
+  /// Largest image side [px] (io::kMaxImageSide too): a larger frame is refused before any allocation.
+  static constexpr int kMaxImageSide = 16384;
   static constexpr double kMinFocalLength = 1.0;
   static constexpr double kMaxFocalLength = 1e6;
   static constexpr double kMinBaseline = 1e-3;

@@ -16,13 +16,15 @@ namespace io {
 
 /// The most points a scan file may declare (KITTI's scans hold about 120 k; a 128-beam sensor
 /// about 260 k per turn): a header asking for more is refused, naming this limit, before
-/// anything is allocated.
+/// anything is allocated. The file readers take another limit (`maxPoints`; the tools'
+/// -max_points) for the rare file that legitimately holds more.
 constexpr std::uint64_t kMaxCloudPoints = 50'000'000;
 
 /// KITTI velodyne scan: float32 little-endian x, y, z, reflectance per point. Throws
 /// std::runtime_error naming the file when it is missing, or when its size is not a multiple of
-/// 16 bytes (a truncated file is never read in part). An empty file gives an empty cloud.
-pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path);
+/// 16 bytes (a truncated file is never read in part), or holds more than `maxPoints` points
+/// (checked from its size, before reading). An empty file gives an empty cloud.
+pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
 /// The same from the file's bytes already in memory (`size` bytes at `data`); `source` names them
 /// in messages.
 pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::size_t size,
@@ -34,9 +36,9 @@ pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::si
 /// (not PCL's, which hostile files crashed): every header is checked against the file's size
 /// before anything is allocated. Throws std::runtime_error naming the file and the problem for a
 /// missing or unreadable file, a header it does not understand (duplicate or unknown keys,
-/// inconsistent counts, unsupported types), more than kMaxCloudPoints points, fewer bytes than
+/// inconsistent counts, unsupported types), more than `maxPoints` points, fewer bytes than
 /// the header declares, an ASCII value that does not parse (naming the line), or missing x/y/z.
-pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path);
+pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
 /// A PCD file's bytes (any of the three encodings) already in memory, read as readPcdOrPly()
 /// reads a .pcd file (through the same parser); `source` names them in messages.
 pcl::PointCloud<pcl::PointXYZI> readPcdFromBuffer(const void* data, std::size_t size,
@@ -47,7 +49,7 @@ pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t 
 
 /// Picks the reader from the extension: .bin, .pcd, .ply (case-insensitive); any other
 /// extension is an error naming the accepted ones.
-pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path);
+pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
 
 /// How writeCloud encodes the points. Measured on a 424k-point XYZRGB KITTI cloud (README,
 /// "Output formats"): binary PCD 8 ms / 6.8 MB, compressed 165 ms / 6.6 MB, ASCII about 1 s /
