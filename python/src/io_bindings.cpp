@@ -57,7 +57,7 @@ void bindIo(py::module_& m) {
       "read_cloud", [](const std::string& path) { return cloudArray(readingFile([&] { return io::readCloud(path); })); },
       py::arg("path"),
       "read_cloud(path) -> (N, 4) float32 array: x, y, z, intensity (0 without one), as the tools read\n"
-      "INPUT: .bin (KITTI), .pcd or .ply. ValueError for another extension, OSError for a bad file.");
+      "INPUT: .bin (KITTI), .pcd or .ply. OSError for another extension or a bad file.");
   m.def(
       "read_image", [](const std::string& path) { return imageArray(readingFile([&] { return io::readImage(path); })); },
       py::arg("path"),
