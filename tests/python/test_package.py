@@ -65,3 +65,16 @@ def test_densify_releases_the_gil(calibration, points, left, right):
         done.wait(0.001)
     worker.join()
     assert len(ticks) > 20  # a frame takes >= 100 ms; with the GIL held the loop would stall
+
+
+def test_readme_example_runs(monkeypatch):
+    """README's "Use it from Python" block, as it is, from the repository root."""
+    import re
+    root = pathlib.Path(__file__).resolve().parents[2]
+    readme = (root / "README.md").read_text()
+    section = readme.split("## Use it from Python", 1)[1]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    monkeypatch.chdir(root)
+    scope = {}
+    exec(compile(code, "README.md", "exec"), scope)
+    assert scope["result"].mode == "fused" and len(scope["result"].points) > 100000
