@@ -95,15 +95,17 @@ class PyDensifier {
     std::vector<Eigen::Vector3f> lidar;
     pointsFromArray(points, lidar);
     const FrameImages images = frameImages(left, right);
+    // One frame at a time per Densifier (it holds the frame's buffers), until its outputs are
+    // copied out. The lock is only ever taken without the GIL, so holding it while the GIL is
+    // taken back cannot deadlock.
+    std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
     {
-      // Matching takes ~100 ms: other Python threads run meanwhile. One frame at a time per
-      // Densifier (it holds the frame's buffers); the lock is taken without the GIL.
+      // Matching takes ~100 ms: other Python threads run meanwhile.
       py::gil_scoped_release release;
-      std::lock_guard<std::mutex> lock(mutex_);
+      lock.lock();
       setImages(densifier_, images, true);
       densifier_.run(lidar);
     }
-    std::lock_guard<std::mutex> lock(mutex_);  // the outputs, before another frame replaces them
     return resultOf(densifier_, !images.left.mat.empty());
   }
 

@@ -78,3 +78,14 @@ def test_readme_example_runs(monkeypatch):
     scope = {}
     exec(compile(code, "README.md", "exec"), scope)
     assert scope["result"].mode == "fused" and len(scope["result"].points) > 100000
+
+
+def test_one_densifier_in_two_threads(calibration, points, left, right, fused):
+    """Calls from two threads on one Densifier wait for each other: both get the frame's result."""
+    from concurrent.futures import ThreadPoolExecutor
+    densifier = lidar_sgm.Densifier(calibration)
+    with ThreadPoolExecutor(2) as pool:
+        results = list(pool.map(lambda _: densifier.densify(points, left, right), range(2)))
+    for result in results:
+        np.testing.assert_array_equal(result.points, fused.points)
+        np.testing.assert_array_equal(result.disparity, fused.disparity)
