@@ -1,7 +1,6 @@
 #include "arrays.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -106,44 +105,19 @@ ImageView<const Rgb8> rgbView(const cv::Mat& rgb) {
                                static_cast<std::ptrdiff_t>(rgb.step / 3));
 }
 
-py::array_t<float> disparityArray(const Image<std::int16_t>& disparity16) {
-  py::array_t<float> out({disparity16.height(), disparity16.width()});
-  float* o = out.mutable_data();
+void copyDisparity(const Image<std::int16_t>& disparity16, float* out) {
   const std::int16_t* d = disparity16.data();
   const std::size_t n = static_cast<std::size_t>(disparity16.width()) * static_cast<std::size_t>(disparity16.height());
   for (std::size_t i = 0; i < n; ++i) {
-    o[i] = d[i] == kInvalidDisparity ? std::numeric_limits<float>::quiet_NaN()
-                                     : static_cast<float>(d[i]) / static_cast<float>(kDisparityScale);
+    out[i] = d[i] == kInvalidDisparity ? std::numeric_limits<float>::quiet_NaN()
+                                       : static_cast<float>(d[i]) / static_cast<float>(kDisparityScale);
   }
-  return out;
 }
 
-template <typename T>
-py::array_t<T> imageArray(const Image<T>& image) {
-  py::array_t<T> out({image.height(), image.width()});
-  if (!image.empty()) {
-    std::memcpy(out.mutable_data(), image.data(),
-                sizeof(T) * static_cast<std::size_t>(image.width()) * static_cast<std::size_t>(image.height()));
-  }
-  return out;
-}
-template py::array_t<float> imageArray<float>(const Image<float>&);
-template py::array_t<std::uint8_t> imageArray<std::uint8_t>(const Image<std::uint8_t>&);
-
-py::array_t<float> pointsArray(const geometry::DenseCloud& cloud) {
-  static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "Vector3f must be three packed floats");
-  py::array_t<float> out({static_cast<py::ssize_t>(cloud.size()), py::ssize_t{3}});
-  if (cloud.size() > 0) std::memcpy(out.mutable_data(), cloud.points.data(), sizeof(Eigen::Vector3f) * cloud.size());
-  return out;
-}
-
-py::array_t<std::int32_t> pixelsArray(const geometry::DenseCloud& cloud) {
-  py::array_t<std::int32_t> out({static_cast<py::ssize_t>(cloud.size()), py::ssize_t{2}});
-  std::int32_t* o = out.mutable_data();
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    o[2 * i] = cloud.pixels[i].x;
-    o[2 * i + 1] = cloud.pixels[i].y;
-  }
+py::array_t<float> disparityArray(const Image<std::int16_t>& disparity16) {
+  py::array_t<float> out = newArray<float>(static_cast<std::size_t>(disparity16.height()),
+                                           static_cast<std::size_t>(disparity16.width()));
+  copyDisparity(disparity16, out.mutable_data());
   return out;
 }
 

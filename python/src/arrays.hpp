@@ -2,6 +2,8 @@
 // numpy arrays in and out: LiDAR points, images (as views where the layout allows), and the
 // Densifier's outputs as new arrays (the Densifier reuses its buffers on the next frame).
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -41,14 +43,24 @@ cv::Mat colorOf(const cv::Mat& image);
 /// A view of an 8-bit, 3-channel cv::Mat as Rgb8 pixels (no copy).
 ImageView<const Rgb8> rgbView(const cv::Mat& rgb);
 
-/// x16 disparities (kInvalidDisparity) -> (H, W) float32 [px], NaN where there is none.
-py::array_t<float> disparityArray(const Image<std::int16_t>& disparity16);
-/// A copy of an image as an (H, W) array of its type.
+// Outputs: arrays are made with the GIL held (newArray), then filled without it (copy*), so that
+// other Python threads run while a frame's ~12 MB of outputs are copied.
+
+/// A new, uninitialised rows x cols array.
 template <typename T>
-py::array_t<T> imageArray(const Image<T>& image);
-/// The cloud's points as an (M, 3) float32 array, and their pixels as an (M, 2) int32 (x, y).
-py::array_t<float> pointsArray(const geometry::DenseCloud& cloud);
-py::array_t<std::int32_t> pixelsArray(const geometry::DenseCloud& cloud);
+py::array_t<T> newArray(std::size_t rows, std::size_t cols) {
+  return py::array_t<T>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
+}
+/// x16 disparities (kInvalidDisparity) -> float [px], NaN where there is none, into `out`
+/// (width x height, row-major).
+void copyDisparity(const Image<std::int16_t>& disparity16, float* out);
+/// The pixels of `image` into `out` (width x height, row-major).
+template <typename T>
+void copyImage(const Image<T>& image, T* out) {
+  std::copy(image.data(), image.data() + static_cast<std::size_t>(image.width()) * image.height(), out);
+}
+/// x16 disparities -> a new (H, W) float32 array, NaN where there is none (with the GIL).
+py::array_t<float> disparityArray(const Image<std::int16_t>& disparity16);
 
 /// "shape (2, 3) float64": what was given, for messages.
 std::string describeArray(const py::handle& array);

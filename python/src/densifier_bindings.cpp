@@ -1,5 +1,6 @@
 // Densifier: one frame of LiDAR-SGM from numpy arrays, the same pipeline and defaults as
 // lidar_sgm_densify; DensifyResult: its outputs as numpy arrays.
+#include <cstring>
 #include <mutex>
 #include <string>
 #include <utility>
@@ -39,28 +40,59 @@ struct DensifyResult {
   int height = 0;         ///< organized: sampled rows; else 1
 };
 
-py::array_t<std::uint8_t> colorsArray(const Densifier& densifier, const geometry::DenseCloud& cloud) {
-  py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(cloud.size()), py::ssize_t{3}});
-  std::uint8_t* o = out.mutable_data();
+/// The cloud's points, their pixels and (when `colors`) their colors into (M, 3), (M, 2) and
+/// (M, 3) arrays' memory.
+void copyCloud(const Densifier& densifier, const geometry::DenseCloud& cloud, float* points, std::int32_t* pixels,
+               std::uint8_t* colors) {
+  static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "Vector3f must be three packed floats");
+  if (!cloud.points.empty()) std::memcpy(points, cloud.points.data(), sizeof(Eigen::Vector3f) * cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const geometry::PixelIndex p = cloud.pixels[i];
+    pixels[2 * i] = p.x;
+    pixels[2 * i + 1] = p.y;
+    if (colors == nullptr) continue;
     Rgb8 c;
-    densifier.colorAt(cloud.pixels[i].x, cloud.pixels[i].y, c);
-    o[3 * i] = c.r;
-    o[3 * i + 1] = c.g;
-    o[3 * i + 2] = c.b;
+    densifier.colorAt(p.x, p.y, c);
+    colors[3 * i] = c.r;
+    colors[3 * i + 1] = c.g;
+    colors[3 * i + 2] = c.b;
   }
-  return out;
 }
 
+/// The outputs of the frame `densifier` has just run. Called with the GIL held; the copies run
+/// without it.
 DensifyResult resultOf(const Densifier& densifier, bool colored) {
   const geometry::DenseCloud& cloud = densifier.cloud();
+  const auto height = static_cast<std::size_t>(densifier.disparity().height());
+  const auto width = static_cast<std::size_t>(densifier.disparity().width());
+  const bool haveConfidence = !densifier.confidence().empty();
+  py::array_t<float> points = newArray<float>(cloud.size(), 3);
+  py::array_t<std::int32_t> pixels = newArray<std::int32_t>(cloud.size(), 2);
+  py::array_t<std::uint8_t> colors = newArray<std::uint8_t>(colored ? cloud.size() : 0, 3);
+  py::array_t<float> disparity = newArray<float>(height, width);
+  py::array_t<float> depth = newArray<float>(static_cast<std::size_t>(densifier.depth().height()),
+                                             static_cast<std::size_t>(densifier.depth().width()));
+  py::array_t<std::uint8_t> confidence = newArray<std::uint8_t>(haveConfidence ? height : 0, haveConfidence ? width : 0);
+  float* pointsOut = points.mutable_data();
+  std::int32_t* pixelsOut = pixels.mutable_data();
+  std::uint8_t* colorsOut = colored ? colors.mutable_data() : nullptr;
+  float* disparityOut = disparity.mutable_data();
+  float* depthOut = depth.mutable_data();
+  std::uint8_t* confidenceOut = confidence.mutable_data();
+  {
+    py::gil_scoped_release release;
+    copyCloud(densifier, cloud, pointsOut, pixelsOut, colorsOut);
+    copyDisparity(densifier.disparity(), disparityOut);
+    copyImage(densifier.depth(), depthOut);
+    if (haveConfidence) copyImage(densifier.confidence(), confidenceOut);
+  }
   DensifyResult r;
-  r.points = pointsArray(cloud);
-  r.colors = colored ? py::object(colorsArray(densifier, cloud)) : py::object(py::none());
-  r.pixels = pixelsArray(cloud);
-  r.disparity = disparityArray(densifier.disparity());
-  r.depth = imageArray(densifier.depth());
-  r.confidence = densifier.confidence().empty() ? py::object(py::none()) : py::object(imageArray(densifier.confidence()));
+  r.points = std::move(points);
+  r.colors = colored ? py::object(std::move(colors)) : py::object(py::none());
+  r.pixels = std::move(pixels);
+  r.disparity = std::move(disparity);
+  r.depth = std::move(depth);
+  r.confidence = haveConfidence ? py::object(std::move(confidence)) : py::object(py::none());
   const DensificationTimings& t = densifier.timings();
   r.timings["project"] = t.project;
   r.timings["match"] = t.match;
