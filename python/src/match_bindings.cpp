@@ -60,6 +60,10 @@ py::array_t<float> match(const py::object& left, const py::object& right, const 
   const FrameImages images = frameImages(left, right);
   LidarPoints lidar;
   if (!lidarDisparity.is_none()) lidar = lidarFromArray(lidarDisparity);
+  if (images.right.mat.empty() && lidar.empty()) {
+    throw std::invalid_argument("nothing to match: give left and right, lidar_disparity (with at least one point), "
+                                "or all three");
+  }
   if (!images.left.mat.empty() && !lidar.empty() &&
       (lidar.width() != images.left.mat.cols || lidar.height() != images.left.mat.rows)) {
     throw std::invalid_argument("lidar_disparity is " + std::to_string(lidar.width()) + "x" +

@@ -142,5 +142,9 @@ def test_match(left, right):
         lidar_sgm.match(left, right, lidar_disparity=lidar_png)
     with pytest.raises(ValueError, match="lidar_disparity is 1242x375 but the images are 1241x375"):
         lidar_sgm.match(left[:, 1:], right[:, 1:], lidar_disparity=lidar)
+    for nothing in (lambda: lidar_sgm.match(None), lambda: lidar_sgm.match(left),
+                    lambda: lidar_sgm.match(left, lidar_disparity=np.full(left.shape[:2], np.nan))):
+        with pytest.raises(ValueError, match="nothing to match: give left and right, lidar_disparity"):
+            nothing()
     with pytest.raises(ValueError, match="unknown parameter 'frame'"):
         lidar_sgm.match(left, right, frame="camera")
