@@ -14,6 +14,10 @@ packages=(
   libcli11-dev                 # the tools' and the bench's command lines (CLI11, header-only)
   pkg-config                   # the install test checks lidar_sgm.pc
   slurm-wlm munge              # the Slurm job array test: its own slurmctld, slurmd and munged
+  python3-dev pybind11-dev     # the Python package lidar_sgm (python/)
+  python3-numpy python3-pytest # its arrays and its tests
+  python3-open3d               # lidar_sgm.to_open3d, tested
+  python3-matplotlib           # examples/densify_kitti.py's color map
 )
 
 missing=()
