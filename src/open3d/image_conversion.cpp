@@ -44,7 +44,8 @@ const T* pixels(const Open3dImage& image) {
 }
 
 // BT.601 gray in OpenCV's fixed point, so that an RGB pair read by Open3D matches as the same
-// pair read by the tools (io::toGray, cv::cvtColor): 8 bit with 15 fractional bits, 16 bit with 14.
+// pair read by the tools (io::toGray, cv::cvtColor): 8 bit with 15 fractional bits (exactly
+// cvtColor's), 16 bit with OpenCV's documented 14 (its vector code differs by up to 2 levels).
 std::uint8_t grayOf(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return static_cast<std::uint8_t>((r * 9798 + g * 19235 + b * 3735 + (1 << 14)) >> 15);
 }

@@ -20,8 +20,9 @@ namespace lidar_sgm {
 GrayImageView grayView(const ::open3d::geometry::Image& image);
 
 /// The gray levels of an Open3D image, at its bit depth: a 1-channel image as it is (copied),
-/// RGB(A) by the BT.601 weights in OpenCV's fixed point (cv::cvtColor RGB2GRAY), so that a pair
-/// given to Open3D matches as the same pair read by the tools.
+/// RGB(A) by the BT.601 weights in OpenCV's fixed point, so that an 8-bit pair given to Open3D
+/// matches as the same pair read by the tools (cv::cvtColor RGB2GRAY, exactly). At 16 bits
+/// OpenCV's vector code rounds differently: its gray and this one differ by up to 2 of 65535.
 class Open3dGray {
  public:
   explicit Open3dGray(const ::open3d::geometry::Image& image);
