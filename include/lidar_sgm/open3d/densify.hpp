@@ -6,18 +6,19 @@
 ///
 /// @code
 /// #include <open3d/io/ImageIO.h>
-/// #include <open3d/io/PointCloudIO.h>
 /// #include <lidar_sgm/io/calibration_io.hpp>
 /// #include <lidar_sgm/open3d/densify.hpp>
 ///
-/// open3d::geometry::PointCloud scan;                       // LiDAR frame [m]
-/// open3d::io::ReadPointCloud("scan.pcd", scan);
-/// auto left = open3d::io::CreateImageFromFile("left.png");   // rectified, gray or RGB, 8/16 bit
-/// auto right = open3d::io::CreateImageFromFile("right.png");
-/// lidar_sgm::Parameters parameters;                         // the tools' defaults
-/// parameters.alpha = 0.7f;                                  // LiDAR weight (Eq. 5)
-/// std::shared_ptr<open3d::geometry::PointCloud> dense = lidar_sgm::densify(
-///     scan, lidar_sgm::io::readCalibration("calib.txt"), left.get(), right.get(), parameters);
+/// // One KITTI-layout frame, e.g. densify(scan, "data/sample", "000000"); scan: LiDAR frame [m].
+/// std::shared_ptr<open3d::geometry::PointCloud> densify(const open3d::geometry::PointCloud& scan,
+///                                                       const std::string& dir, const std::string& name) {
+///   auto left = open3d::io::CreateImageFromFile(dir + "/image_2/" + name + ".png");   // gray/RGB, 8/16 bit
+///   auto right = open3d::io::CreateImageFromFile(dir + "/image_3/" + name + ".png");  // nullptr -> LiDAR-only
+///   lidar_sgm::Parameters parameters;              // the tools' defaults
+///   parameters.alpha = 0.7f;                       // LiDAR weight (Eq. 5)
+///   return lidar_sgm::densify(scan, lidar_sgm::io::readCalibration(dir + "/calib/" + name + ".txt"),
+///                             left.get(), right.get(), parameters);  // colors_ in [0, 1] from the left image
+/// }
 /// @endcode
 ///
 /// Modes as the Densifier's: left and right -> fused (Eq. 5); left only -> LiDAR-only SGM with
