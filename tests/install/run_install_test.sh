@@ -120,7 +120,7 @@ if(NOT TARGET lidar_sgm::open3d OR TARGET lidar_sgm::io OR TARGET lidar_sgm::pcl
   message(FATAL_ERROR "COMPONENTS open3d loaded the wrong targets")
 endif()
 EOF
-  "$cmake_command" -S "$work/open3d_only" -B "$work/build-open3d_only" -DCMAKE_CXX_COMPILER="$cxx" \
+  "$cmake_command" --no-warn-unused-cli -S "$work/open3d_only" -B "$work/build-open3d_only" -DCMAKE_CXX_COMPILER="$cxx" \
     -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON -DCMAKE_DISABLE_FIND_PACKAGE_PCL=ON \
     > "$work/open3d_only.log" || { cat "$work/open3d_only.log"; exit 1; }
 
