@@ -5,12 +5,12 @@
 # pkg-config, runs an installed tool, imports the installed Python package and densifies the sample
 # with it, and removes the prefix. Any step failing fails the test.
 #
-# Usage: run_install_test.sh CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL(ON|OFF) SAMPLE_DIR [PYTHON]
+# Usage: run_install_test.sh CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL(ON|OFF) SAMPLE_DIR HAVE_OPEN3D(ON|OFF) [PYTHON]
 # (PYTHON: the interpreter the package was built for; empty or absent when it was not built)
 # (tests/CMakeLists.txt registers it with ctest, label `install`).
 set -euo pipefail
-if [ $# -ne 6 ] && [ $# -ne 7 ]; then
-  echo "usage: $0 CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL SAMPLE_DIR [PYTHON]" >&2
+if [ $# -ne 7 ] && [ $# -ne 8 ]; then
+  echo "usage: $0 CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL SAMPLE_DIR HAVE_OPEN3D [PYTHON]" >&2
   exit 2
 fi
 cmake_command="$1"
@@ -19,7 +19,8 @@ config="${3:-Release}"
 cxx="$4"
 have_pcl="$5"
 sample_dir="$6"
-python="${7:-}"
+have_open3d="${7:-OFF}"
+python="${8:-}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
 work="$(mktemp -d "${TMPDIR:-/tmp}/lidar_sgm_install_test.XXXXXX")"
@@ -134,6 +135,27 @@ EOF
   )
 else
   step "Python skipped: this build has no Python package"
+if [ "$have_open3d" = "ON" ]; then
+  step "Open3D component alone: found with OpenCV and PCL hidden"
+  # lidar_sgm::open3d stands on the pipeline only: it must not look for either.
+  mkdir -p "$work/open3d_only"
+  cat > "$work/open3d_only/CMakeLists.txt" <<'EOF'
+cmake_minimum_required(VERSION 3.16)
+project(open3d_only LANGUAGES CXX)
+find_package(lidar_sgm CONFIG REQUIRED COMPONENTS open3d)
+if(NOT TARGET lidar_sgm::open3d OR TARGET lidar_sgm::io OR TARGET lidar_sgm::pcl)
+  message(FATAL_ERROR "COMPONENTS open3d loaded the wrong targets")
+endif()
+EOF
+  "$cmake_command" --no-warn-unused-cli -S "$work/open3d_only" -B "$work/build-open3d_only" -DCMAKE_CXX_COMPILER="$cxx" \
+    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON -DCMAKE_DISABLE_FIND_PACKAGE_PCL=ON \
+    > "$work/open3d_only.log" || { cat "$work/open3d_only.log"; exit 1; }
+
+  step "Open3D user: find_package(lidar_sgm COMPONENTS open3d io), densify() on $sample_dir read by Open3D"
+  build_downstream open3d_user
+  "$work/build-open3d_user/open3d_user" "$sample_dir"
+else
+  step "Open3D user skipped: this build has no Open3D"
 fi
 
 echo
