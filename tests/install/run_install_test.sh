@@ -135,6 +135,8 @@ EOF
   )
 else
   step "Python skipped: this build has no Python package"
+fi
+
 if [ "$have_open3d" = "ON" ]; then
   step "Open3D component alone: found with OpenCV and PCL hidden"
   # lidar_sgm::open3d stands on the pipeline only: it must not look for either.
