@@ -22,7 +22,8 @@ namespace py = pybind11;
 
 namespace {
 
-/// One frame's outputs, copied out of the Densifier (which reuses its buffers).
+/// One frame's outputs: the cloud moved out of the Densifier, the images copied (it reuses their
+/// buffers).
 struct DensifyResult {
   py::object points;      ///< (M, 3) float32, the output frame (LiDAR by default)
   py::object colors;      ///< (M, 3) uint8 RGB, None without a left image
@@ -40,17 +41,10 @@ struct DensifyResult {
   int height = 0;         ///< organized: sampled rows; else 1
 };
 
-/// The cloud's points, their pixels and (when `colors`) their colors into (M, 3), (M, 2) and
-/// (M, 3) arrays' memory.
-void copyCloud(const Densifier& densifier, const geometry::DenseCloud& cloud, float* points, std::int32_t* pixels,
-               std::uint8_t* colors) {
-  static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "Vector3f must be three packed floats");
-  if (!cloud.points.empty()) std::memcpy(points, cloud.points.data(), sizeof(Eigen::Vector3f) * cloud.size());
+/// The colors of the cloud's points (their pixels in the left image) into an (M, 3) array's memory.
+void copyColors(const Densifier& densifier, const geometry::DenseCloud& cloud, std::uint8_t* colors) {
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const geometry::PixelIndex p = cloud.pixels[i];
-    pixels[2 * i] = p.x;
-    pixels[2 * i + 1] = p.y;
-    if (colors == nullptr) continue;
     Rgb8 c;
     densifier.colorAt(p.x, p.y, c);
     colors[3 * i] = c.r;
@@ -59,29 +53,40 @@ void copyCloud(const Densifier& densifier, const geometry::DenseCloud& cloud, fl
   }
 }
 
+/// (M, cols) arrays over the cloud's own vectors, without a copy: the cloud is moved out of the
+/// Densifier (each run makes a new one) into a capsule that the arrays keep alive.
+template <typename T, typename Element>
+py::array_t<T> viewOf(std::vector<Element>& elements, std::size_t cols, const py::capsule& owner) {
+  static_assert(sizeof(Element) == 3 * sizeof(float) || sizeof(Element) == 2 * sizeof(std::int32_t),
+                "a point is three packed floats, a pixel two packed ints");
+  if (elements.empty()) return newArray<T>(0, cols);
+  return py::array_t<T>({static_cast<py::ssize_t>(elements.size()), static_cast<py::ssize_t>(cols)},
+                        {static_cast<py::ssize_t>(sizeof(Element)), static_cast<py::ssize_t>(sizeof(T))},
+                        reinterpret_cast<T*>(elements.data()), owner);
+}
+
 /// The outputs of the frame `densifier` has just run. Called with the GIL held; the copies run
 /// without it.
-DensifyResult resultOf(const Densifier& densifier, bool colored) {
-  const geometry::DenseCloud& cloud = densifier.cloud();
+DensifyResult resultOf(Densifier& densifier, bool colored) {
+  auto* cloud = new geometry::DenseCloud(densifier.takeCloud());
+  const py::capsule owner(cloud, [](void* p) { delete static_cast<geometry::DenseCloud*>(p); });
   const auto height = static_cast<std::size_t>(densifier.disparity().height());
   const auto width = static_cast<std::size_t>(densifier.disparity().width());
   const bool haveConfidence = !densifier.confidence().empty();
-  py::array_t<float> points = newArray<float>(cloud.size(), 3);
-  py::array_t<std::int32_t> pixels = newArray<std::int32_t>(cloud.size(), 2);
-  py::array_t<std::uint8_t> colors = newArray<std::uint8_t>(colored ? cloud.size() : 0, 3);
+  py::array_t<float> points = viewOf<float>(cloud->points, 3, owner);
+  py::array_t<std::int32_t> pixels = viewOf<std::int32_t>(cloud->pixels, 2, owner);
+  py::array_t<std::uint8_t> colors = newArray<std::uint8_t>(colored ? cloud->size() : 0, 3);
   py::array_t<float> disparity = newArray<float>(height, width);
   py::array_t<float> depth = newArray<float>(static_cast<std::size_t>(densifier.depth().height()),
                                              static_cast<std::size_t>(densifier.depth().width()));
   py::array_t<std::uint8_t> confidence = newArray<std::uint8_t>(haveConfidence ? height : 0, haveConfidence ? width : 0);
-  float* pointsOut = points.mutable_data();
-  std::int32_t* pixelsOut = pixels.mutable_data();
   std::uint8_t* colorsOut = colored ? colors.mutable_data() : nullptr;
   float* disparityOut = disparity.mutable_data();
   float* depthOut = depth.mutable_data();
   std::uint8_t* confidenceOut = confidence.mutable_data();
   {
     py::gil_scoped_release release;
-    copyCloud(densifier, cloud, pointsOut, pixelsOut, colorsOut);
+    if (colorsOut != nullptr) copyColors(densifier, *cloud, colorsOut);
     copyDisparity(densifier.disparity(), disparityOut);
     copyImage(densifier.depth(), depthOut);
     if (haveConfidence) copyImage(densifier.confidence(), confidenceOut);
@@ -110,8 +115,8 @@ DensifyResult resultOf(const Densifier& densifier, bool colored) {
   r.backend = toString(densifier.usedBackend());
   r.frame = densifier.reprojectionOptions().frame == geometry::OutputFrame::Camera ? "camera" : "lidar";
   r.disparityRange = py::make_tuple(densifier.usedParameters().minDisparity, densifier.usedParameters().numDisparities);
-  r.width = cloud.width;
-  r.height = cloud.height;
+  r.width = cloud->width;
+  r.height = cloud->height;
   return r;
 }
 
@@ -153,7 +158,7 @@ class PyDensifier {
 }  // namespace
 
 void bindDensifier(py::module_& m) {
-  py::class_<DensifyResult>(m, "DensifyResult", "The outputs of one Densifier.densify call (copies: they stay valid).")
+  py::class_<DensifyResult>(m, "DensifyResult", "The outputs of one Densifier.densify call (they own their memory: they stay valid).")
       .def_readonly("points", &DensifyResult::points,
                     "(M, 3) float32 points [m], in the output frame (`frame`: LiDAR by default); NaN rows for\n"
                     "pixels without a point when keep_organized")
