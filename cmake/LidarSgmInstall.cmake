@@ -2,7 +2,7 @@
 # package (find_package(lidar_sgm CONFIG COMPONENTS ...)) and a pkg-config file for the core.
 #
 # One export set per component (lidar_sgm_<component>Targets.cmake), so that a user who asks for
-# the core loads neither Eigen nor OpenCV nor PCL (the GPU machine has none of them); the Config
+# the core loads neither Eigen nor OpenCV nor PCL nor Open3D (the GPU machine has none of them); the Config
 # loads a component's targets after those of the components it depends on.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -12,7 +12,7 @@ set(LIDAR_SGM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/lidar_sgm"
 
 # The public libraries, in dependency order (each may use only those before it): the Config
 # relies on this order when it loads the targets.
-set(LIDAR_SGM_PACKAGE_COMPONENTS core geometry pipeline io pcl)
+set(LIDAR_SGM_PACKAGE_COMPONENTS core geometry pipeline io pcl open3d)
 
 # 0.x: every minor release may change the ABI (the Matcher class, the Densifier, the PCL class
 # layout all still move), so the soname carries major.minor; from 1.0 on, the major alone.

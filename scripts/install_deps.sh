@@ -13,8 +13,13 @@ packages=(
   libpcl-dev                   # the PCL class, cloud files, lidar_sgm_densify
   nlohmann-json3-dev           # lidar_sgm_eval's JSON results
   libcli11-dev                 # the tools' and the bench's command lines (CLI11, header-only)
+  libopen3d-dev                # lidar_sgm::open3d, densify() on Open3D clouds (0.16; optional: skipped without it)
   pkg-config                   # the install test checks lidar_sgm.pc
   slurm-wlm munge              # the Slurm job array test: its own slurmctld, slurmd and munged
+  python3-dev pybind11-dev     # the Python package lidar_sgm (python/)
+  python3-numpy python3-pytest # its arrays and its tests
+  python3-open3d               # lidar_sgm.to_open3d, tested
+  python3-matplotlib           # examples/densify_kitti.py's color map
 )
 
 missing=()

@@ -386,6 +386,19 @@ TEST_F(BatchTool, ProgressLineEveryNFramesOnStderr) {
   EXPECT_EQ(r.output.find("Progress: 3/4"), std::string::npos) << r.output;
 }
 
+TEST_F(BatchTool, OnATerminalOneProgressLineIsRedrawnInPlace) {
+  if (shell("command -v script >/dev/null 2>&1").exitCode != 0) GTEST_SKIP() << "no 'script' to give the tool a terminal";
+  // util-linux's script runs the tool on a pseudo-terminal: stderr is a terminal there.
+  const std::string command = std::string(LIDAR_SGM_BATCH_TOOL) + " -input_dir " + synth_.string() + " -output_dir " +
+                              (root_ / "out").string() + " -progress 2";
+  const RunResult r = shell("script -qfec '" + command + "' /dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // "\r\033[K" returns to the line's start and clears it; the last state stays on its own line.
+  EXPECT_NE(r.output.find("\r\033[KProgress: 4/4 frames (100 %), "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("\nProgress: "), std::string::npos) << "no plain log lines on a terminal";
+  EXPECT_NE(r.output.find("Summary: 4/4 frames"), std::string::npos) << r.output;
+}
+
 TEST_F(BatchTool, ASignalFinishesTheCurrentFrameThenStopsLeavingNoPartialFile) {
   // 40 frames (links to one scan), slowed by the reference backend, so the signal comes mid-run.
   constexpr int kLinks = 40;

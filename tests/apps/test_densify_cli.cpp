@@ -2,6 +2,8 @@
 // exit codes, messages, the clouds it writes and the files it leaves behind.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <array>
@@ -89,7 +91,8 @@ class DensifyCli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("lidar_sgm_densify_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("lidar_sgm_densify_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -1,6 +1,8 @@
 // The lidar_sgm_disparity tool as a user runs it: exit codes, messages, files left behind.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <array>
@@ -37,7 +39,8 @@ class DisparityCli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("lidar_sgm_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("lidar_sgm_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     const test::SyntheticStereo s = test::makeStereo(97, 61, [](double x, double) { return 6.0 + 0.05 * x; });

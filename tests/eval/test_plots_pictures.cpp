@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -241,7 +243,7 @@ TEST(FramePictures, HalfSizeQuantisedAndSmallEvenForNoisyMaps) {
   }
   const std::vector<std::pair<Method, Image<std::int16_t>>> disparities{
       {Method{MethodKind::StereoSgm, 0.0}, stereo}, {Method{MethodKind::FusedSgm, kPaperAlpha}, fused}};
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lidar_sgm_frame_pictures";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("lidar_sgm_frame_pictures_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   writeFramePictures(dir.string(), frame, disparities);

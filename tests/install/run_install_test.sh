@@ -2,13 +2,15 @@
 # The package as a user gets it: installs a build into a temporary prefix (cmake --install), then
 # configures, builds and runs the downstream projects beside this script against that prefix
 # (find_package(lidar_sgm CONFIG REQUIRED COMPONENTS ...)), compiles the core user once more with
-# pkg-config, runs an installed tool, and removes the prefix. Any step failing fails the test.
+# pkg-config, runs an installed tool, imports the installed Python package and densifies the sample
+# with it, and removes the prefix. Any step failing fails the test.
 #
-# Usage: run_install_test.sh CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL(ON|OFF) SAMPLE_DIR
+# Usage: run_install_test.sh CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL(ON|OFF) SAMPLE_DIR HAVE_OPEN3D(ON|OFF) [PYTHON]
+# (PYTHON: the interpreter the package was built for; empty or absent when it was not built)
 # (tests/CMakeLists.txt registers it with ctest, label `install`).
 set -euo pipefail
-if [ $# -ne 6 ]; then
-  echo "usage: $0 CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL SAMPLE_DIR" >&2
+if [ $# -ne 7 ] && [ $# -ne 8 ]; then
+  echo "usage: $0 CMAKE BUILD_DIR CONFIG CXX_COMPILER HAVE_PCL SAMPLE_DIR HAVE_OPEN3D [PYTHON]" >&2
   exit 2
 fi
 cmake_command="$1"
@@ -17,6 +19,8 @@ config="${3:-Release}"
 cxx="$4"
 have_pcl="$5"
 sample_dir="$6"
+have_open3d="${7:-OFF}"
+python="${8:-}"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
 work="$(mktemp -d "${TMPDIR:-/tmp}/lidar_sgm_install_test.XXXXXX")"
@@ -105,6 +109,55 @@ if [ "$have_pcl" = "ON" ]; then
   "$work/build-pcl_user/pcl_user" "$sample_dir"
 else
   step "PCL user skipped: this build has no PCL"
+fi
+
+if [ -n "$python" ]; then
+  step "Python: import lidar_sgm from the prefix, densify $sample_dir"
+  init="$(find "$prefix" -path '*/lidar_sgm/__init__.py' | head -n 1)"
+  [ -n "$init" ] || { echo "FAILED: the Python package lidar_sgm is not installed" >&2; exit 1; }
+  for file in __init__.pyi py.typed; do
+    [ -f "$(dirname "$init")/$file" ] || { echo "FAILED: lidar_sgm/$file is not installed" >&2; exit 1; }
+  done
+  # Run from the temporary folder, so that nothing but PYTHONPATH can lead to a lidar_sgm.
+  (cd "$work" && PYTHONPATH="$(dirname "$(dirname "$init")")" PYTHONDONTWRITEBYTECODE=1 "$python" - "$prefix" "$sample_dir" <<'EOF'
+import sys
+import lidar_sgm
+prefix, sample = sys.argv[1], sys.argv[2]
+assert lidar_sgm.__file__.startswith(prefix), lidar_sgm.__file__
+assert lidar_sgm._lidar_sgm.__file__.startswith(prefix), lidar_sgm._lidar_sgm.__file__
+calibration = lidar_sgm.read_calibration(f"{sample}/calib/000000.txt")
+points = lidar_sgm.read_kitti_bin(f"{sample}/velodyne/000000.bin")
+left, right = (lidar_sgm.read_image(f"{sample}/image_{i}/000000.png") for i in (2, 3))
+result = lidar_sgm.Densifier(calibration).densify(points, left, right)
+assert result.mode == "fused" and len(result.points) > 100000, (result.mode, len(result.points))
+print(f"lidar_sgm {lidar_sgm.__version__} from {lidar_sgm.__file__}: {len(result.points)} points")
+EOF
+  )
+else
+  step "Python skipped: this build has no Python package"
+fi
+
+if [ "$have_open3d" = "ON" ]; then
+  step "Open3D component alone: found with OpenCV and PCL hidden"
+  # lidar_sgm::open3d stands on the pipeline only: it must not look for either.
+  mkdir -p "$work/open3d_only"
+  cat > "$work/open3d_only/CMakeLists.txt" <<'EOF'
+cmake_minimum_required(VERSION 3.16)
+project(open3d_only LANGUAGES CXX)
+find_package(lidar_sgm CONFIG REQUIRED COMPONENTS open3d)
+if(NOT TARGET lidar_sgm::open3d OR TARGET lidar_sgm::io OR TARGET lidar_sgm::pcl)
+  message(FATAL_ERROR "COMPONENTS open3d loaded the wrong targets")
+endif()
+EOF
+  "$cmake_command" --no-warn-unused-cli -S "$work/open3d_only" -B "$work/build-open3d_only" -DCMAKE_CXX_COMPILER="$cxx" \
+    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON -DCMAKE_DISABLE_FIND_PACKAGE_PCL=ON \
+    > "$work/open3d_only.log" || { cat "$work/open3d_only.log"; exit 1; }
+
+  step "Open3D user: find_package(lidar_sgm COMPONENTS open3d io), densify() on $sample_dir read by Open3D"
+  build_downstream open3d_user
+  "$work/build-open3d_user/open3d_user" "$sample_dir"
+else
+  step "Open3D user skipped: this build has no Open3D"
 fi
 
 echo

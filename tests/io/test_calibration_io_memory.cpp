@@ -2,6 +2,8 @@
 // the same text, and errors that name the caller's label instead of a file.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -71,7 +73,8 @@ class CalibrationMemory : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("lidar_sgm_calib_mem_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("lidar_sgm_calib_mem_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -1,6 +1,8 @@
 // lidar_sgm_synth as a user runs it: help, rejected options leave nothing behind, the layout.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 
 #include <array>
@@ -36,7 +38,8 @@ class SynthCli : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("lidar_sgm_synth_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("lidar_sgm_synth_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }

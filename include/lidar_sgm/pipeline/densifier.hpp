@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -161,6 +162,9 @@ class Densifier {
   const Image<float>& depth() const { return depth_; }
   /// The dense cloud (LiDAR frame unless the reprojection options say camera).
   const geometry::DenseCloud& cloud() const { return cloud_; }
+  /// Moves the last run's cloud out (cloud() is empty afterwards), for a front end that hands it
+  /// on without a copy: every run makes a new cloud anyway.
+  geometry::DenseCloud takeCloud() { return std::exchange(cloud_, geometry::DenseCloud()); }
   /// The projected scan: kept points with their pixel, x16 disparity and input index (for
   /// runProjected: the points of the LidarPoints in pixel order, sourceIndex empty).
   const geometry::ProjectedLidar& projected() const { return projected_; }
