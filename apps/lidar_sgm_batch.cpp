@@ -164,6 +164,7 @@ int run(int argc, char** argv) {
   std::set<std::string> cloudOptions = joined(lidar_sgm::apps::densifyValueOptions(), lidar_sgm::apps::densifyFlagOptions());
   cloudOptions.erase("threads");
   cloudOptions.erase("backend");
+  cloudOptions.erase("max_points");  // accepts or refuses an input; never changes a cloud's bytes
   lidar_sgm::apps::checkAndRecordCloudOptions(
       outDir, lidar_sgm::apps::cloudOptionsText(args, cloudOptions, extension), args.has("overwrite"));
   std::vector<std::string> outPaths;

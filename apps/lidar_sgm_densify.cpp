@@ -198,30 +198,37 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   std::printf("Saving %s (%s)", outPath.c_str(), lidar_sgm::io::toString(out.format).c_str());
   std::fflush(stdout);
   // Every output goes to its temporary; all are renamed into place once every one is written.
-  lidar_sgm::io::writeCloud(outputs.temporary(outPath), dense, out.format);
+  outputs.write(outPath,
+                [&](const std::string& temporary) { lidar_sgm::io::writeCloud(temporary, dense, out.format); });
   if (!disparityPath.empty()) {
     std::printf(", %s", disparityPath.c_str());
-    lidar_sgm::io::writeImageAtomically(outputs.temporary(disparityPath), lidar_sgm::io::toKittiDisparity(used.view()));
+    outputs.write(disparityPath, [&](const std::string& temporary) {
+      lidar_sgm::io::writeImageAtomically(temporary, lidar_sgm::io::toKittiDisparity(used.view()));
+    });
   }
   if (!depthPath.empty()) {
     std::printf(", %s", depthPath.c_str());
-    lidar_sgm::io::writeImageAtomically(outputs.temporary(depthPath),
-                                        lidar_sgm::io::toKittiDepth(sgm.getDepthImage().view()));
+    outputs.write(depthPath, [&](const std::string& temporary) {
+      lidar_sgm::io::writeImageAtomically(temporary, lidar_sgm::io::toKittiDepth(sgm.getDepthImage().view()));
+    });
   }
   if (!confidencePath.empty()) {
     std::printf(", %s", confidencePath.c_str());
-    lidar_sgm::io::writeImageAtomically(outputs.temporary(confidencePath),
-                                        lidar_sgm::io::toConfidencePng(sgm.getConfidenceImage().view()));
+    outputs.write(confidencePath, [&](const std::string& temporary) {
+      lidar_sgm::io::writeImageAtomically(temporary, lidar_sgm::io::toConfidencePng(sgm.getConfidenceImage().view()));
+    });
   }
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
-    lidar_sgm::io::writeImageAtomically(
-        outputs.temporary(colorPath),
-        lidar_sgm::io::colorizeDisparity(used.view(), range.minDisparity + range.numDisparities));
+    outputs.write(colorPath, [&](const std::string& temporary) {
+      lidar_sgm::io::writeImageAtomically(
+          temporary, lidar_sgm::io::colorizeDisparity(used.view(), range.minDisparity + range.numDisparities));
+    });
   }
   if (!previewPath.empty()) {
     std::printf(", %s", previewPath.c_str());
-    lidar_sgm::io::writeImageAtomically(outputs.temporary(previewPath), preview);
+    outputs.write(previewPath,
+                  [&](const std::string& temporary) { lidar_sgm::io::writeImageAtomically(temporary, preview); });
   }
   outputs.commit();
   std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());
@@ -279,7 +286,7 @@ int run(int argc, char** argv) {
   Timer loadTimer;
   std::printf("Loading %s", inputPath.c_str());
   std::fflush(stdout);
-  const pcl::PointCloud<pcl::PointXYZI>::Ptr scan(new pcl::PointCloud<pcl::PointXYZI>(lidar_sgm::io::readCloud(inputPath)));
+  const pcl::PointCloud<pcl::PointXYZI>::Ptr scan(new pcl::PointCloud<pcl::PointXYZI>(lidar_sgm::io::readCloud(inputPath, lidar_sgm::apps::maxPointsFrom(args))));
   std::printf(" [done, %.0f ms : %zu points]\n", loadTimer.elapsedMs(), scan->size());
   if (scan->empty()) throw std::invalid_argument("the input cloud '" + inputPath + "' has no points");
 

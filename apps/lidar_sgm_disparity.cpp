@@ -167,18 +167,22 @@ int run(int argc, char** argv) {
   Timer saveTimer;
   std::printf("Saving %s", outPath.c_str());
   // Every output goes to its temporary; all are renamed into place once every one is written.
-  lidar_sgm::io::writeImageAtomically(outputs.temporary(outPath), lidar_sgm::io::toKittiDisparity(disparity.view()));
+  outputs.write(outPath, [&](const std::string& temporary) {
+    lidar_sgm::io::writeImageAtomically(temporary, lidar_sgm::io::toKittiDisparity(disparity.view()));
+  });
   if (!colorPath.empty()) {
     std::printf(", %s", colorPath.c_str());
     const lidar_sgm::Parameters& used = densifier.usedParameters();  // the range matched, e.g. from the LiDAR
     const double maxDisparity = used.minDisparity + used.numDisparities;
-    lidar_sgm::io::writeImageAtomically(outputs.temporary(colorPath),
-                                        lidar_sgm::io::colorizeDisparity(disparity.view(), maxDisparity));
+    outputs.write(colorPath, [&](const std::string& temporary) {
+      lidar_sgm::io::writeImageAtomically(temporary, lidar_sgm::io::colorizeDisparity(disparity.view(), maxDisparity));
+    });
   }
   if (!confidencePath.empty()) {
     std::printf(", %s", confidencePath.c_str());
-    lidar_sgm::io::writeImageAtomically(outputs.temporary(confidencePath),
-                                        lidar_sgm::io::toConfidencePng(densifier.confidence().view()));
+    outputs.write(confidencePath, [&](const std::string& temporary) {
+      lidar_sgm::io::writeImageAtomically(temporary, lidar_sgm::io::toConfidencePng(densifier.confidence().view()));
+    });
   }
   outputs.commit();
   std::printf(" [done, %.0f ms]\n", saveTimer.elapsedMs());

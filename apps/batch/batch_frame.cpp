@@ -23,9 +23,9 @@ struct FrameData {
 };
 
 /// The checks of lidar_sgm_densify's loading, in its order.
-FrameData load(const Frame& frame, int width, int height) {
+FrameData load(const Frame& frame, int width, int height, std::uint64_t maxPoints) {
   FrameData data;
-  data.scan.reset(new pcl::PointCloud<pcl::PointXYZI>(io::readCloud(frame.scan)));
+  data.scan.reset(new pcl::PointCloud<pcl::PointXYZI>(io::readCloud(frame.scan, maxPoints)));
   if (data.scan->empty()) throw std::invalid_argument("the input cloud '" + frame.scan + "' has no points");
   data.calibration = readFrameCalibration(frame, width, height);
   if (width > 0 && (data.calibration.width != width || data.calibration.height != height)) {
@@ -100,7 +100,7 @@ FrameDensifier::~FrameDensifier() = default;
 
 FrameResult FrameDensifier::densify(const Frame& frame, const std::string& outPath) {
   const Timer loadTimer;
-  const FrameData data = load(frame, width_, height_);
+  const FrameData data = load(frame, width_, height_, maxPointsFrom(args_));
   FrameTimings ms;
   ms.load = loadTimer.elapsedMs();
   Densifications& d = *densifications_;

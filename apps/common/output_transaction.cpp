@@ -141,6 +141,14 @@ const std::string& OutputTransaction::temporary(const std::string& output) const
   return temporaries_[static_cast<std::size_t>(it - outputs_.begin())];
 }
 
+void OutputTransaction::rethrowNamingOutput(const std::string& output, const std::string& temporary,
+                                            const std::string& what) {
+  // The writers say "cannot write '<temporary>': <reason>"; the user knows the output's name.
+  const std::string prefix = "cannot write '" + temporary + "': ";
+  const std::string reason = what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what;
+  throw std::runtime_error("cannot write '" + output + "': " + reason + "; no output was replaced");
+}
+
 void OutputTransaction::commit() {
   for (std::size_t i = 0; i < outputs_.size(); ++i) {
     std::error_code ec;

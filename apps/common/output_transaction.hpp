@@ -27,11 +27,26 @@ class OutputTransaction {
   /// the name the library's own writers use, so format-by-extension writers still work.
   const std::string& temporary(const std::string& output) const;
 
+  /// Calls `writer(temporary(output))`; an exception it throws is rethrown as std::runtime_error
+  /// "cannot write '<output>': <reason>" (naming the user's file, not the temporary).
+  template <typename Writer>
+  void write(const std::string& output, Writer&& writer) {
+    const std::string& path = temporary(output);
+    try {
+      writer(path);
+    } catch (const std::exception& e) {
+      rethrowNamingOutput(output, path, e.what());
+    }
+  }
+
   /// Renames every temporary into place, after checking that all of them exist. Throws
   /// std::runtime_error naming the output that was not written (nothing is renamed then).
   void commit();
 
  private:
+  [[noreturn]] static void rethrowNamingOutput(const std::string& output, const std::string& temporary,
+                                               const std::string& what);
+
   std::vector<std::string> outputs_;
   std::vector<std::string> temporaries_;
   bool committed_ = false;

@@ -1,6 +1,8 @@
 #include "densify/densify_options.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -69,7 +71,7 @@ void requireOrganizedImage(const std::string& path, const cv::Mat& image) {
 
 std::set<std::string> densifyValueOptions() {
   return joined(joined(sgmValueOptions(), filterValueOptions()),
-                {"image_size", "format", "frame", "max_depth", "stride", "voxel"});
+                {"image_size", "format", "frame", "max_depth", "stride", "voxel", "max_points"});
 }
 
 std::set<std::string> densifyFlagOptions() {
@@ -98,13 +100,29 @@ std::string outputOptionsHelp() {
       "                           more than max(%g px, %g*d) nearer on two opposite sides within +-%d columns,\n"
       "                           +-%d rows)\n"
       "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
-      "                           cleared, nothing was measured there)\n",
+      "                           cleared, nothing was measured there)\n"
+      "  -max_points N            refuse an input scan of more than N points, before reading it whole\n"
+      "                           (default: %llu)\n",
       reprojection.maxDepth, reprojection.stride, projection.occlusion.minGap, projection.occlusion.relativeGap,
-      projection.occlusion.halfWidth, projection.occlusion.halfHeight);
+      projection.occlusion.halfWidth, projection.occlusion.halfHeight,
+      static_cast<unsigned long long>(io::kMaxCloudPoints));
   return text + filterOptionsHelp();
 }
 
+std::uint64_t maxPointsFrom(const Arguments& args) {
+  if (!args.has("max_points")) return io::kMaxCloudPoints;
+  const std::string text = args.text("max_points", "");
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long value = std::strtoull(text.c_str(), &end, 10);
+  if (text.empty() || text[0] == '-' || *end != '\0' || errno == ERANGE || value == 0) {
+    throw std::invalid_argument("option -max_points: '" + text + "' is not a positive whole number of points");
+  }
+  return value;
+}
+
 void checkDensifyOptions(const Arguments& args) {
+  maxPointsFrom(args);
   parametersFrom(args);
   outputFiltersFrom(args);
   backendFrom(args);

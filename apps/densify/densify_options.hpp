@@ -3,6 +3,7 @@
 // output filters', the output's) and the one way they configure an SGMDensification, so that a
 // frame densified by either tool is the same cloud, byte for byte.
 
+#include <cstdint>
 #include <set>
 #include <string>
 
@@ -42,6 +43,9 @@ void parseImageSize(const std::string& text, int& width, int& height, const char
 /// Throws std::invalid_argument naming `path` when `image` has fewer than 2 rows or columns: PCL
 /// takes a cloud of height 1 for an unorganized one, so such an image cannot color a cloud.
 void requireOrganizedImage(const std::string& path, const cv::Mat& image);
+
+/// -max_points: the most points an input scan may hold (default io::kMaxCloudPoints).
+std::uint64_t maxPointsFrom(const Arguments& args);
 
 std::set<std::string> densifyValueOptions();
 std::set<std::string> densifyFlagOptions();

@@ -373,7 +373,7 @@ void writeAtomically(const std::string& path, Write write) {
   }
   if (status != 0) {
     detail::discardTemporary(temporary);
-    failWrite(path, "PCL's writer failed (is the directory missing or not writable?)");
+    failWrite(path, "PCL's writer failed (a missing or read-only folder, a full disk or a file size limit)");
   }
   detail::commitTemporary(temporary, path);
 }

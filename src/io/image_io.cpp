@@ -247,7 +247,7 @@ void writeImageAtomically(const std::string& path, const cv::Mat& image, const s
   }
   if (!written) {
     detail::discardTemporary(temporary);
-    throw std::runtime_error("cannot write '" + path + "': the directory is not writable or the extension is unknown");
+    throw std::runtime_error("cannot write '" + path + "': OpenCV's writer failed (a missing or read-only folder, a full disk, a file size limit or an unknown extension)");
   }
   detail::commitTemporary(temporary, path);
 }

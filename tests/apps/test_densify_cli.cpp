@@ -42,8 +42,9 @@ struct RunResult {
   std::string output;  // stdout + stderr
 };
 
-RunResult runTool(const std::string& arguments) {
-  const std::string command = std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + arguments + " 2>&1";
+/// `prefix` runs in the shell first (a ulimit, a trap).
+RunResult runTool(const std::string& arguments, const std::string& prefix = "") {
+  const std::string command = prefix + std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 512> buffer{};
@@ -668,6 +669,18 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(kScan + out + calib + pair + " -bogus 1", "unknown option -bogus");
   expectFailure(kScan + out + calib + pair + " -alpha", "needs a value");
   expectFailure(kScan + calib + pair, "expected INPUT and OUTPUT, got 1");
+  // Limits (issue 15): each named, before anything large is allocated.
+  expectFailure(kScan + out + calib + " -image_size 100000x100000",
+                "option -image_size: '100000x100000' is larger than the limit of 16384x16384 pixels");
+  expectFailure(kScan + out + calib + pair + " -max_points 1000",
+                "31598 points is more than the limit of 1000 points per scan");
+  expectFailure(kScan + out + calib + pair + " -max_points -5", "option -max_points: '-5' is not a positive whole");
+  ASSERT_TRUE(cv::imwrite(p("one_row.png"), cv::Mat(1, kWidth, CV_8UC3, cv::Scalar(10, 20, 30))));
+  expectFailure(kScan + out + calib + " -left " + p("one_row.png"),
+                "the image '" + p("one_row.png") + "' is 1242x1: an image needs at least 2x2 pixels");
+  fs::create_directories(p("folder.png"));
+  expectFailure(kScan + out + calib + pair + " -color " + p("folder.png"), "cannot write '" + p("folder.png") + "': it is a folder");
+  fs::remove(p("folder.png"));
 
   // LiDAR-only on an object-format calibration, no image and no -image_size: no size at all.
   expectFailure(kScan + out + calib, "the calibration has no image size");
@@ -696,6 +709,60 @@ TEST_F(DensifyCli, FailedRunLeavesAnExistingOutputUntouched) {
   EXPECT_NE(late.output.find("Error: the dense cloud is empty"), std::string::npos) << late.output;
   EXPECT_EQ(readText(p("out.ply")), "precious too\n");
   EXPECT_EQ(fileCount(), 3u) << "a failed run left a file behind";
+  EXPECT_TRUE(hiddenFiles().empty());
+}
+
+// All-or-nothing (issue 15): an output that fails after others were written leaves every file as
+// it was. The shell's file-size limit makes the second picture fail once the cloud is written
+// (SIGXFSZ ignored, so the write fails with EFBIG instead of killing the tool).
+TEST_F(DensifyCli, ALateWriteFailureReplacesNoOutputAndLeavesNoTemporary) {
+  writeBytes("out.pcd", "precious cloud\n");
+  writeBytes("d.png", "precious picture\n");
+  const std::string arguments = kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft +
+                                " -voxel 2 -disparity " + p("d.png") + " -color " + p("c.png");
+  const RunResult r = runTool(arguments, "trap '' XFSZ; ulimit -f 64; ");  // 64 KiB: the cloud fits, not the pictures
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("Error: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Error: cannot write '" + p("d.png") + "': "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no output was replaced"), std::string::npos) << r.output;
+  EXPECT_EQ(readText(p("out.pcd")), "precious cloud\n");
+  EXPECT_EQ(readText(p("d.png")), "precious picture\n");
+  EXPECT_FALSE(fs::exists(p("c.png")));
+  EXPECT_TRUE(hiddenFiles().empty());
+  // Without the limit the same run replaces both.
+  const RunResult ok = runTool(arguments);
+  ASSERT_EQ(ok.exitCode, 0) << ok.output;
+  EXPECT_NE(readText(p("out.pcd")), "precious cloud\n");
+  EXPECT_TRUE(cv::imread(p("d.png"), cv::IMREAD_UNCHANGED).type() == CV_16UC1);
+  EXPECT_TRUE(fs::exists(p("c.png")));
+  EXPECT_TRUE(hiddenFiles().empty());
+}
+
+// SIGTERM while the (slow, ASCII) cloud is being written: the tool dies of the signal, the old
+// output is untouched and its temporaries are gone; a temporary left by a killed run (kill -9)
+// is removed by the next run.
+TEST_F(DensifyCli, SigtermWhileSavingLeavesTheOldOutputAndNoTemporary) {
+  writeBytes("out.pcd", "precious cloud\n");
+  const std::string arguments = kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft +
+                                " -format ascii -disparity " + p("d.png");
+  // The shell waits for "Saving" on the tool's output, then sends SIGTERM.
+  const std::string script = "(" + std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + arguments + " > " + p("log") +
+                             " 2>&1 & pid=$!; for i in $(seq 600); do grep -q Saving " + p("log") +
+                             " && break; sleep 0.05; done; kill -TERM $pid; wait $pid; echo status=$?)";
+  FILE* pipe = popen(script.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  pclose(pipe);
+  EXPECT_NE(output.find("status=143"), std::string::npos) << output << readText(p("log"));  // 128 + SIGTERM
+  EXPECT_EQ(readText(p("out.pcd")), "precious cloud\n");
+  EXPECT_FALSE(fs::exists(p("d.png")));
+  EXPECT_TRUE(hiddenFiles().empty()) << hiddenFiles().front();
+
+  writeBytes(".out.tmp999999999.pcd", "left by a run killed with -9");  // above any pid: no such process
+  const RunResult r = runTool(kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(hiddenFiles().empty());
 }
 

@@ -161,6 +161,8 @@ TEST_F(DisparityCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(lr + p("out.png") + " -disparity_range auto", "option -disparity_range: 'auto' must be lidar or fixed");
   expectFailure(lr + p("out.jpg"), "must be a .png file");
   expectFailure(p("left.png") + " " + p("right.png") + " " + p("no_dir/out.png"), "cannot write");
+  fs::create_directories(p("folder.png"));
+  expectFailure(lr + p("out.png") + " -color " + p("folder.png"), "cannot write '" + p("folder.png") + "': it is a folder");
 }
 
 TEST_F(DisparityCli, NeverOverwritesAnInput) {
