@@ -4,6 +4,7 @@
 # Findings (crash-*, oom-*, leak-*, timeout-*) land in build-fuzz/findings/<target>/: each
 # becomes a file in tests/data/hostile/ read by the normal test suite (test_hostile_inputs).
 # Usage: tests/fuzz/run_fuzzers.sh SECONDS [TARGET...]
+# FUZZ_RUNS=N stops a target after N executions if that comes first (e.g. 1000000).
 set -euo pipefail
 
 seconds="${1:?usage: run_fuzzers.sh SECONDS [TARGET...]}"
@@ -25,7 +26,7 @@ CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWi
 cmake --build "$build" -j2 --target "${targets[@]}" > "$build/fuzz-build.log" || { tail -30 "$build/fuzz-build.log"; exit 1; }
 python3 "$root/tests/fuzz/make_seeds.py" "$build/seeds"
 
-printf '%-22s %12s %10s %8s %6s\n' target execs execs/s crashes hangs
+printf '%-22s %12s %8s %10s %8s %6s\n' target execs seconds execs/s crashes hangs
 for target in "${targets[@]}"; do
   corpus="$build/corpus/$target"
   findings="$build/findings/$target"
@@ -34,12 +35,16 @@ for target in "${targets[@]}"; do
   # -timeout 10: a hang is an input that takes over 10 s; -rss_limit_mb/-malloc_limit_mb 2048:
   # an allocation over 2 GB is a finding (issue 15's targets).
   set +e
-  "$build/tests/fuzz/$target" "$corpus" "$build/seeds/$target" -max_total_time="$seconds" -timeout=10 \
+  runs=()
+  if [ -n "${FUZZ_RUNS:-}" ]; then runs=(-runs="$FUZZ_RUNS"); fi
+  start=$(date +%s)
+  "$build/tests/fuzz/$target" "$corpus" "$build/seeds/$target" -max_total_time="$seconds" "${runs[@]}" -timeout=10 \
     -rss_limit_mb=2048 -malloc_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/" > "$log" 2>&1
   set -e
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
-  rate=$(( execs / (seconds > 0 ? seconds : 1) ))
+  elapsed=$(( $(date +%s) - start ))
+  rate=$(( execs / (elapsed > 0 ? elapsed : 1) ))
   crashes=$(find "$findings" -name 'crash-*' -o -name 'oom-*' -o -name 'leak-*' | wc -l)
   hangs=$(find "$findings" -name 'timeout-*' | wc -l)
-  printf '%-22s %12s %10s %8s %6s\n' "$target" "$execs" "$rate" "$crashes" "$hangs"
+  printf '%-22s %12s %8s %10s %8s %6s\n' "$target" "$execs" "$elapsed" "$rate" "$crashes" "$hangs"
 done
