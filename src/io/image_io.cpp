@@ -2,6 +2,7 @@
 
 #include "lidar_sgm/geometry/calibration.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -50,9 +51,31 @@ void requirePngSizeWithinLimit(const std::string& path) {
   if (width > limit || height > limit) failTooLarge(path, width, height);
 }
 
+// OpenCV picks a decoder by the file's bytes, not its name, among every codec it was built with:
+// a file with "DICM" at byte 128 goes to GDCM, whose reader aborts on an assert (found by
+// fuzz_png, tests/data/hostile/png_dicom_magic.png). Only the formats a rig's images come in
+// reach OpenCV: PNG, JPEG and binary or ASCII PGM/PPM. Their signatures sit at byte 0, and
+// OpenCV tries their decoders before GDCM's, so the file goes to the decoder its signature names.
+void requireImageSignature(const std::string& path) {
+  unsigned char head[8] = {};
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  const auto got = static_cast<std::size_t>(in.gcount());
+  static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  const bool png = got == 8 && std::memcmp(head, kPng, 8) == 0;
+  const bool jpeg = got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF;
+  const bool pnm = got >= 3 && head[0] == 'P' && (head[1] == '2' || head[1] == '3' || head[1] == '5' || head[1] == '6') &&
+                   std::isspace(head[2]) != 0;
+  if (!png && !jpeg && !pnm) {
+    throw std::runtime_error("cannot read image '" + path +
+                             "': not a PNG, JPEG or PGM/PPM file (its first bytes are none of their signatures)");
+  }
+}
+
 cv::Mat readAny(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw std::runtime_error("cannot read image '" + path + "': no such file");
+  requireImageSignature(path);
   requirePngSizeWithinLimit(path);
   cv::Mat image;
   try {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "lidar_sgm/io/cloud_io.hpp"
+#include "lidar_sgm/io/image_io.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -64,6 +65,23 @@ INSTANTIATE_TEST_SUITE_P(
       for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
       return name;
     });
+
+// Images: every reader the tools use goes through the same signature check before OpenCV.
+TEST(HostileImage, DicomMagicBehindAPngLookalikeIsRefusedBeforeOpenCv) {
+  const std::string path = (fs::path(LIDAR_SGM_HOSTILE_DATA) / "png_dicom_magic.png").string();
+  ASSERT_TRUE(fs::exists(path)) << path;
+  const std::string expected = "cannot read image '" + path + "': not a PNG, JPEG or PGM/PPM file";
+  for (const auto& read : {+[](const std::string& p) { io::readImage(p); },
+                           +[](const std::string& p) { io::readKittiDisparity(p); },
+                           +[](const std::string& p) { io::readKittiDepthAsDisparity(p, 389.0); }}) {
+    try {
+      read(path);
+      ADD_FAILURE() << "no exception for " << path;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  }
+}
 
 }  // namespace
 }  // namespace lidar_sgm

@@ -18,9 +18,11 @@ namespace io {
 constexpr int kMaxImageSide = 16384;
 
 /// Reads an image as stored (8 or 16 bit; 1, 3 or 4 channels, BGR order), decoded once; toGray()
-/// and toColor() then give what matching and coloring need. Throws std::runtime_error naming
-/// the file when it is missing, not an image, larger than kMaxImageSide on a side, or of another
-/// depth / channel count.
+/// and toColor() then give what matching and coloring need. PNG, JPEG and PGM/PPM only (checked
+/// from the first bytes: OpenCV would hand other bytes to any codec it was built with). Throws
+/// std::runtime_error naming the file when it is missing, of another format, larger than
+/// kMaxImageSide on a side (a PNG's size is checked from its header, before decoding), or of
+/// another depth / channel count.
 cv::Mat readImage(const std::string& path);
 /// An 8- or 16-bit gray, BGR or BGRA image as gray of the same depth (BGR2GRAY, OpenCV's BT.601
 /// weights; gray is returned as is, not copied). Throws std::invalid_argument for other depths or
