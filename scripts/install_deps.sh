@@ -15,6 +15,9 @@ packages=(
   libcli11-dev                 # the tools' and the bench's command lines (CLI11, header-only)
   pkg-config                   # the install test checks lidar_sgm.pc
   slurm-wlm munge              # the Slurm job array test: its own slurmctld, slurmd and munged
+  clang-14 libclang-rt-14-dev  # scripts/test_sanitizers.sh: ASan, UBSan and libFuzzer (-fsanitize=fuzzer)
+  libomp-14-dev                # ... and OpenMP for clang, so the sanitized cpu backend runs its threads
+  python3                      # ... tests/fuzz/make_seeds.py, the fuzz targets' seeds
 )
 
 missing=()
