@@ -22,6 +22,8 @@ jobs="$(nproc)"
 # works here, also for the tools the tests start).
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:check_initialization_order=1:strict_init_order=1:exitcode=86"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:exitcode=86"
+# Leaks inside third-party libraries only (each explained in the file).
+export LSAN_OPTIONS="suppressions=$root/scripts/lsan_suppressions.txt"
 
 elapsed() { printf '%dm%02ds' $(($1 / 60)) $(($1 % 60)); }
 
