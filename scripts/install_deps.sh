@@ -20,6 +20,9 @@ packages=(
   python3-numpy python3-pytest # its arrays and its tests
   python3-open3d               # lidar_sgm.to_open3d, tested
   python3-matplotlib           # examples/densify_kitti.py's color map
+  clang-14 libclang-rt-14-dev  # scripts/test_sanitizers.sh: ASan, UBSan and libFuzzer (-fsanitize=fuzzer)
+  libomp-14-dev                # ... and OpenMP for clang, so the sanitized cpu backend runs its threads
+  python3                      # ... tests/fuzz/make_seeds.py, the fuzz targets' seeds
 )
 
 missing=()
