@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake        # compiler and build system
+  ccache                       # compiler cache: scripts/build.sh, test.sh and test_sanitizers.sh use it
   libopencv-dev                # io and tools: imgcodecs, imgproc
   libyaml-cpp-dev              # io: the calibration YAML reader (OpenCV's parser hung on hostile files)
   libgtest-dev libgmock-dev    # tests
@@ -22,6 +23,7 @@ packages=(
   python3-matplotlib           # examples/densify_kitti.py's color map
   clang-14 libclang-rt-14-dev  # scripts/test_sanitizers.sh: ASan, UBSan and libFuzzer (-fsanitize=fuzzer)
   libomp-14-dev                # ... and OpenMP for clang, so the sanitized cpu backend runs its threads
+  llvm-14                      # scripts/coverage.sh: llvm-profdata and llvm-cov
   python3                      # ... tests/fuzz/make_seeds.py, the fuzz targets' seeds
 )
 

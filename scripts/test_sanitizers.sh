@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# The sanitizer step of CI (scripts/test.sh calls it last): one clang 14 build with ASan + UBSan
-# (build-sanitize/, or $SANITIZE_BUILD_DIR) of the whole project, the SIMD cpu backend included;
-# then the test suite under it, each fuzz target for $FUZZ_SECONDS (30 by default) from its seeds,
-# and each fuzz target once over its files of the regression corpus (tests/data/hostile/).
+# The sanitizer step of CI (scripts/test.sh calls it last): a clang 14 build with ASan + UBSan
+# (build-sanitize/, or $SANITIZE_BUILD_DIR) of the libraries, the SIMD cpu backend included, then
+# under it:
+#   1. the `unit` tier and the hostile cases (ctest labels unit and hostile; tests/README.md);
+#   2. each fuzz target for $FUZZ_SECONDS (10 by default; a release runs the 1 M-execution
+#      campaign of docs/RELIABILITY.md instead), from its seeds, $(nproc) targets at a time;
+#   3. each fuzz target once over its files of the regression corpus (tests/data/hostile/).
 # Any sanitizer report fails the step. LIDAR_SGM_SKIP_SANITIZERS=1 skips it (local runs).
-# Prints the wall time of each part.
+# LIDAR_SGM_SANITIZE_TIER=all builds everything and runs every test that can run sanitized (the
+# e2e tier too: about 20 minutes more here), for a release.
+# Appends its phases' times to $LIDAR_SGM_PHASE_LOG when set.
 set -euo pipefail
 
 if [ "${LIDAR_SGM_SKIP_SANITIZERS:-0}" = "1" ]; then
@@ -13,8 +18,44 @@ if [ "${LIDAR_SGM_SKIP_SANITIZERS:-0}" = "1" ]; then
 fi
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${SANITIZE_BUILD_DIR:-$root/build-sanitize}"
-fuzz_seconds="${FUZZ_SECONDS:-30}"
+fuzz_seconds="${FUZZ_SECONDS:-10}"
+tier="${LIDAR_SGM_SANITIZE_TIER:-unit}"
 jobs="$(nproc)"
+source "$root/scripts/ccache_env.sh"
+phase() { if [ -n "${LIDAR_SGM_PHASE_LOG:-}" ]; then echo "$1 $2" >> "$LIDAR_SGM_PHASE_LOG"; fi; }
+elapsed() { printf '%dm%02ds' $(($1 / 60)) $(($1 % 60)); }
+
+# Why the e2e tier is not run here: its tests drive the same library code through the tools on
+# whole frames (or through packaging, Python, Open3D and Slurm), and what can break memory in that
+# code is reached by the unit tier, stage by stage on small frames with odd sizes and padded strides,
+# by the hostile cases (every reader and the tool's checks, on bad input, through
+# lidar_sgm_densify) and by the fuzz targets (every reader and the option parser, on arbitrary
+# bytes). Label by label:
+# - e2e tool runs (densify, disparity, batch, eval, synth CLIs): the Densifier, readers and writers
+#   the unit tier runs, on larger inputs; the tools' own parsing is fuzzed (fuzz_arguments) and
+#   their bad-input paths are the hostile cases.
+# - e2e evaluation protocols and KITTI frames: the matcher and metrics of the unit tier on real
+#   frames; sanitized they took 2-4 minutes each, for no code the unit tier does not reach.
+# - install: builds downstream projects without -fsanitize against the installed libraries; it
+#   checks packaging, not memory (and cannot link against sanitized static libraries).
+# - slurm: starts Debian's unsanitized munged, slurmctld and slurmd as root to run the batch tool.
+# - python: Debian's unsanitized python3 cannot load the ASan runtime after start-up.
+# - open3d: the Open3D front end converts images and clouds with Open3D's own code around the
+#   Densifier.
+case "$tier" in
+  unit)
+    targets=(--target lidar_sgm_tests_unit lidar_sgm_densify lidar_sgm_fuzzers)
+    labels=(-L '^(unit|hostile)$')
+    # Neither is reached by the sanitized tier: no need to find or build them.
+    skip=(-DLIDAR_SGM_BUILD_PYTHON=OFF -DCMAKE_DISABLE_FIND_PACKAGE_Open3D=ON)
+    ;;
+  all)
+    targets=()
+    labels=(-LE '^(install|slurm|python)$')
+    skip=()
+    ;;
+  *) echo "test_sanitizers: LIDAR_SGM_SANITIZE_TIER is unit or all, not '$tier'" >&2; exit 1 ;;
+esac
 
 # Reports stop the program (halt_on_error) with a stack (print_stacktrace) and exit code 86, not
 # ASan's default 1: the tools' tests expect exit code 1 for bad input, and a tool that crashed in
@@ -25,66 +66,95 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:exitcode=86"
 # Leaks inside third-party libraries only (each explained in the file).
 export LSAN_OPTIONS="suppressions=$root/scripts/lsan_suppressions.txt"
 
-elapsed() { printf '%dm%02ds' $(($1 / 60)) $(($1 % 60)); }
-
 # RelWithDebInfo at -O1 and with assertions (no -DNDEBUG): -O0 (Debug) makes the matcher's tests
 # several times slower under ASan, -O2 costs build time for nothing the sanitizers need.
 start=$SECONDS
-launcher=()
-if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 mkdir -p "$build"
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DLIDAR_SGM_BUILD_TESTS=ON -DLIDAR_SGM_BUILD_FUZZERS=ON \
-  -DLIDAR_SGM_WITH_CUDA=OFF -DLIDAR_SGM_WITH_CPU_BACKEND=ON "${launcher[@]}" > "$build/sanitize-configure.log" ||
-  { cat "$build/sanitize-configure.log"; exit 1; }
-cmake --build "$build" -j"$jobs" > "$build/sanitize-build.log" 2>&1 || { tail -40 "$build/sanitize-build.log"; exit 1; }
+  -DLIDAR_SGM_WITH_CUDA=OFF -DLIDAR_SGM_WITH_CPU_BACKEND=ON "${skip[@]}" "${lidar_sgm_launcher[@]}" \
+  > "$build/sanitize-configure.log" || { cat "$build/sanitize-configure.log"; exit 1; }
+cmake --build "$build" -j"$jobs" "${targets[@]}" > "$build/sanitize-build.log" 2>&1 ||
+  { tail -40 "$build/sanitize-build.log"; exit 1; }
 build_time=$((SECONDS - start))
+phase "sanitizer build" $build_time
 echo "test_sanitizers: build $(elapsed $build_time)"
 
-# The whole suite but for the tests that cannot run sanitized:
-# - install: tests/install builds downstream projects, without -fsanitize, against the installed
-#   (sanitized, static) libraries: they do not link; it checks packaging, not memory.
-# - slurm: starts munged, slurmctld and slurmd (unsanitized system daemons, as root) to run
-#   scripts/slurm/densify_array.sbatch; the tools it runs are covered by test_batch here.
-# - python: the Python extension (where it is built) is loaded into Debian's unsanitized python3,
-#   which cannot load an ASan runtime after start-up.
+# The tests. ctest starts a process per test; under ASan a start costs about a second here (some
+# 190 shared libraries loaded through the sanitizer's interceptors), more than most tests take.
+# So each GoogleTest suite of the selection runs as one process with all its tests, $jobs suites
+# at a time, the longest first; the other tests of the selection (scripts) run through ctest.
+# LIDAR_SGM_SANITIZE_PER_TEST=1 runs every test through ctest instead (a process per test).
 # A failure here is reported at the end: the fuzzing still runs.
 failed=()
 start=$SECONDS
-(cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1200 -LE '^(install|slurm|python)$') || failed+=(ctest)
+if [ "${LIDAR_SGM_SANITIZE_PER_TEST:-0}" = "1" ]; then
+  (cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1200 "${labels[@]}") || failed+=(ctest)
+else
+  # Each suite's executable, its working folder and its tests' count, from ctest's own list.
+  (cd "$build" && ctest -N "${labels[@]}" --show-only=json-v1) > "$build/sanitize-tests.json"
+  python3 "$root/tests/sanitize_suites.py" "$build/sanitize-tests.json" "$build/sanitize-suites.txt" \
+    "$build/sanitize-scripts.txt"
+  mkdir -p "$build/suite-logs"
+  run_suite() {  # EXECUTABLE WORKING_FOLDER: all its tests in one process; the log's end on failure
+    local log
+    log="$build/suite-logs/$(basename "$1").log"
+    if (cd "$2" && timeout 1800 "$1" --gtest_brief=1 > "$log" 2>&1); then
+      echo "test_sanitizers: $(basename "$1"): $(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$log")" \
+        "$(grep -o 'PASSED.*' "$log" | head -1)"
+    else
+      echo "test_sanitizers: $(basename "$1") FAILED (log $log):"
+      tail -60 "$log"
+      return 1
+    fi
+  }
+  export -f run_suite
+  export build
+  xargs -a "$build/sanitize-suites.txt" -P "$jobs" -L 1 bash -c 'run_suite "$0" "$1"' || failed+=(suites)
+  if [ -s "$build/sanitize-scripts.txt" ]; then
+    (cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1200 -R "$(paste -sd'|' "$build/sanitize-scripts.txt")") ||
+      failed+=(ctest)
+  fi
+fi
 ctest_time=$((SECONDS - start))
+phase "sanitizer tests" $ctest_time
 echo "test_sanitizers: ctest $(elapsed $ctest_time)"
 
-# Each fuzz target briefly, from the seeds of data/sample: -timeout 10 (a hang is over 10 s) and
-# 2 GB for one allocation or the whole process (issue 15's targets). Findings land in
+# Each fuzz target briefly, from the seeds of data/sample, $jobs at a time: -timeout 10 (a hang is
+# over 10 s) and 2 GB for one allocation or the whole process. Findings land in
 # $build/findings/<target>/; each becomes a regression file in tests/data/hostile/.
-targets=(fuzz_kitti_bin fuzz_pcd fuzz_ply fuzz_kitti_calib fuzz_kitti_raw_calib fuzz_yaml_calib fuzz_png fuzz_arguments)
+fuzz_targets=(fuzz_kitti_bin fuzz_pcd fuzz_ply fuzz_kitti_calib fuzz_kitti_raw_calib fuzz_yaml_calib fuzz_png fuzz_arguments)
 limits=(-timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048)
-start=$SECONDS
-rm -rf "$build/seeds" "$build/corpus"
-python3 "$root/tests/fuzz/make_seeds.py" "$build/seeds"
-for target in "${targets[@]}"; do
-  corpus="$build/corpus/$target"
-  findings="$build/findings/$target"
+fuzz_one() {
+  local target=$1 corpus="$build/corpus/$1" findings="$build/findings/$1" log="$build/findings/$1.log"
   mkdir -p "$corpus" "$findings"
-  log="$build/findings/$target.log"
   if "$build/tests/fuzz/$target" "$corpus" "$build/seeds/$target" -max_total_time="$fuzz_seconds" "${limits[@]}" \
        -print_final_stats=1 -artifact_prefix="$findings/" > "$log" 2>&1; then
+    local execs
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
     echo "test_sanitizers: $target: $execs executions in ${fuzz_seconds} s, no finding"
   else
     echo "test_sanitizers: $target FAILED (log $log, findings in $findings):"
     tail -40 "$log"
-    failed+=("$target")
+    return 1
   fi
+}
+start=$SECONDS
+rm -rf "$build/seeds" "$build/corpus" "$build/findings"
+python3 "$root/tests/fuzz/make_seeds.py" "$build/seeds"
+declare -A running=()
+for target in "${fuzz_targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do sleep 0.2; done
+  fuzz_one "$target" &
+  running[$!]=$target
 done
-fuzz_time=$((SECONDS - start))
-echo "test_sanitizers: fuzzing $(elapsed $fuzz_time)"
+for pid in "${!running[@]}"; do
+  wait "$pid" || failed+=("${running[$pid]}")
+done
 
 # The regression corpus under ASan: tests/data/hostile/<format>_*.<ext> goes to fuzz_<format>
 # (pcd_*.pcd to fuzz_pcd, ply_*.ply to fuzz_ply, ...). Given files, libFuzzer runs each once.
-start=$SECONDS
-for target in "${targets[@]}"; do
+for target in "${fuzz_targets[@]}"; do
   files=()
   for f in "$root/tests/data/hostile/${target#fuzz_}_"*; do
     [ -f "$f" ] && files+=("$f")
@@ -99,10 +169,11 @@ for target in "${targets[@]}"; do
     failed+=("$target (regression corpus)")
   fi
 done
-regression_time=$((SECONDS - start))
+fuzz_time=$((SECONDS - start))
+phase "fuzzing + corpus" $fuzz_time
 
 echo "test_sanitizers: build $(elapsed $build_time), ctest $(elapsed $ctest_time)," \
-  "fuzzing $(elapsed $fuzz_time), regression corpus $(elapsed $regression_time)"
+  "fuzzing and regression corpus $(elapsed $fuzz_time)"
 if [ ${#failed[@]} -ne 0 ]; then
   echo "test_sanitizers: FAILED: ${failed[*]}"
   exit 1

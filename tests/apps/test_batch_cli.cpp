@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/test_data.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -36,7 +37,7 @@ RunResult shell(const std::string& command) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
-RunResult batch(const std::string& arguments) { return shell(std::string(LIDAR_SGM_BATCH_TOOL) + " " + arguments + " 2>&1"); }
+RunResult batch(const std::string& arguments) { return shell(std::string(test::kBatchTool) + " " + arguments + " 2>&1"); }
 
 std::string readText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -83,7 +84,7 @@ class BatchTool : public ::testing::Test {
     // Per process: ctest runs each test in its own process, several at once.
     synth_ = fs::temp_directory_path() / ("lidar_sgm_batch_synth_" + std::to_string(getpid()));
     fs::remove_all(synth_);
-    const RunResult r = shell(std::string(LIDAR_SGM_SYNTH_TOOL) + " -out " + synth_.string() + " -n " +
+    const RunResult r = shell(std::string(test::kSynthTool) + " -out " + synth_.string() + " -n " +
                               std::to_string(kFrames) + " -width 320 -height 96 2>&1");
     ASSERT_EQ(r.exitCode, 0) << r.output;
   }
@@ -132,7 +133,7 @@ class BatchTool : public ::testing::Test {
   std::string densified(int i, bool lidarOnly = false) {
     const fs::path out = root_ / ("ref_" + stem(i) + ".pcd");
     const std::string s = synth_.string();
-    std::string command = std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + s + "/velodyne/" + stem(i) + ".bin " +
+    std::string command = std::string(test::kDensifyTool) + " " + s + "/velodyne/" + stem(i) + ".bin " +
                           out.string() + " -calib " + s + "/calib/" + stem(i) + ".txt";
     command += lidarOnly ? std::string(" -image_size ") + kSize
                          : " -left " + s + "/image_2/" + stem(i) + ".png -right " + s + "/image_3/" + stem(i) + ".png";
@@ -173,7 +174,7 @@ TEST_F(BatchTool, OdometrySequenceGivesLidarSgmDensifysCloudsByteForByte) {
 // object-format calibration.
 TEST_F(BatchTool, SyntheticDriveIsReadAsAnOdometrySequence) {
   const fs::path drive = root_ / "drive";
-  const RunResult rendered = shell(std::string(LIDAR_SGM_SYNTH_TOOL) +
+  const RunResult rendered = shell(std::string(test::kSynthTool) +
                                    " -sequence 3 -seed 4 -width 320 -height 96 -out " + drive.string() + " 2>&1");
   ASSERT_EQ(rendered.exitCode, 0) << rendered.output;
   const fs::path out = root_ / "out";
@@ -183,7 +184,7 @@ TEST_F(BatchTool, SyntheticDriveIsReadAsAnOdometrySequence) {
   for (int i = 0; i < 3; ++i) {
     const fs::path reference = root_ / ("ref_" + stem(i) + ".pcd");
     const std::string d = drive.string();
-    const RunResult single = shell(std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + d + "/velodyne/" + stem(i) + ".bin " +
+    const RunResult single = shell(std::string(test::kDensifyTool) + " " + d + "/velodyne/" + stem(i) + ".bin " +
                                    reference.string() + " -calib " + d + "/calib/" + stem(i) + ".txt -left " + d +
                                    "/image_2/" + stem(i) + ".png -right " + d + "/image_3/" + stem(i) + ".png 2>&1");
     ASSERT_EQ(single.exitCode, 0) << single.output;
@@ -298,7 +299,7 @@ TEST_F(BatchTool, KittiRawDriveReadsTheDateFoldersCalibrationAsLidarSgmDensifyDo
   const RunResult r = batch("-input_dir " + drive.string() + " -output_dir " + out.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const fs::path reference = root_ / "ref.pcd";
-  const RunResult d = shell(std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + scan.string() + " " + reference.string() +
+  const RunResult d = shell(std::string(test::kDensifyTool) + " " + scan.string() + " " + reference.string() +
                             " -calib " + date.string() + " 2>&1");
   ASSERT_EQ(d.exitCode, 0) << d.output;
   EXPECT_TRUE(readText(out / "0000000000.pcd") == readText(reference));
@@ -323,7 +324,7 @@ TEST_F(BatchTool, VoxelShrinksEveryFrameAsLidarSgmDensifyDoesAndTheSizesAreRepor
   // The same down-sampling as the single-frame tool, byte for byte.
   const fs::path reference = root_ / "ref.pcd";
   const std::string s = synth_.string();
-  const RunResult d = shell(std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + s + "/velodyne/000001.bin " +
+  const RunResult d = shell(std::string(test::kDensifyTool) + " " + s + "/velodyne/000001.bin " +
                             reference.string() + " -calib " + s + "/calib/000001.txt -left " + s +
                             "/image_2/000001.png -right " + s + "/image_3/000001.png -voxel 0.25 2>&1");
   ASSERT_EQ(d.exitCode, 0) << d.output;
@@ -376,7 +377,7 @@ TEST_F(BatchTool, TemporariesOfAKilledRunAreRemovedOnlyForThisShardsFrames) {
 }
 
 TEST_F(BatchTool, ProgressLineEveryNFramesOnStderr) {
-  const RunResult r = shell(std::string(LIDAR_SGM_BATCH_TOOL) + " -input_dir " + synth_.string() + " -output_dir " +
+  const RunResult r = shell(std::string(test::kBatchTool) + " -input_dir " + synth_.string() + " -output_dir " +
                             (root_ / "out").string() + " -progress 2 2>&1 >/dev/null");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("Progress: 2/4 frames (50 %), "), std::string::npos) << r.output;
@@ -389,7 +390,7 @@ TEST_F(BatchTool, ProgressLineEveryNFramesOnStderr) {
 TEST_F(BatchTool, OnATerminalOneProgressLineIsRedrawnInPlace) {
   if (shell("command -v script >/dev/null 2>&1").exitCode != 0) GTEST_SKIP() << "no 'script' to give the tool a terminal";
   // util-linux's script runs the tool on a pseudo-terminal: stderr is a terminal there.
-  const std::string command = std::string(LIDAR_SGM_BATCH_TOOL) + " -input_dir " + synth_.string() + " -output_dir " +
+  const std::string command = std::string(test::kBatchTool) + " -input_dir " + synth_.string() + " -output_dir " +
                               (root_ / "out").string() + " -progress 2";
   const RunResult r = shell("script -qfec '" + command + "' /dev/null");
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -414,7 +415,7 @@ TEST_F(BatchTool, ASignalFinishesTheCurrentFrameThenStopsLeavingNoPartialFile) {
   for (const auto& [name, number] : std::vector<std::pair<std::string, int>>{{"INT", 2}, {"TERM", 15}}) {
     const fs::path out = root_ / ("out_" + name);
     const std::string script =
-        std::string(LIDAR_SGM_BATCH_TOOL) + " -list " + (root_ / "frames.txt").string() + " -output_dir " +
+        std::string(test::kBatchTool) + " -list " + (root_ / "frames.txt").string() + " -output_dir " +
         out.string() + " -backend cpu_ref >" + (root_ / "log.txt").string() + " 2>&1 & pid=$!; " +
         "for i in $(seq 1 500); do [ -s " + (out / "manifest.jsonl").string() + " ] && break; sleep 0.01; done; " +
         "kill -" + name + " $pid; wait $pid; echo \"rc=$?\"";

@@ -18,6 +18,7 @@
 #include <pcl/point_cloud.h>
 
 #include "lidar_sgm/pcl/point_types.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -38,7 +39,7 @@ RunResult shell(const std::string& command) {
 }
 
 RunResult batch(const std::string& arguments) {
-  return shell(std::string(LIDAR_SGM_BATCH_TOOL) + " " + arguments + " 2>&1");
+  return shell(std::string(test::kBatchTool) + " " + arguments + " 2>&1");
 }
 
 std::string readText(const fs::path& path) {
@@ -71,7 +72,7 @@ class BatchMap : public ::testing::Test {
   static void SetUpTestSuite() {
     synth_ = fs::temp_directory_path() / ("lidar_sgm_batch_map_synth_" + std::to_string(getpid()));
     fs::remove_all(synth_);
-    const RunResult r = shell(std::string(LIDAR_SGM_SYNTH_TOOL) + " -out " + (synth_ / "object").string() + " -n " +
+    const RunResult r = shell(std::string(test::kSynthTool) + " -out " + (synth_ / "object").string() + " -n " +
                               std::to_string(kFrames) + " -width 320 -height 96 2>&1");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const fs::path seq = synth_ / "dataset" / "sequences" / "00";

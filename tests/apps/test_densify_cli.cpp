@@ -32,6 +32,7 @@
 #include "lidar_sgm/io/cloud_preview.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/pcl/point_types.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -44,7 +45,7 @@ struct RunResult {
 
 /// `prefix` runs in the shell first (a ulimit, a trap).
 RunResult runTool(const std::string& arguments, const std::string& prefix = "") {
-  const std::string command = prefix + std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + arguments + " 2>&1";
+  const std::string command = prefix + std::string(test::kDensifyTool) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 512> buffer{};
@@ -53,7 +54,7 @@ RunResult runTool(const std::string& arguments, const std::string& prefix = "") 
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
-const std::string kSample = LIDAR_SGM_SAMPLE_DIR;
+const std::string kSample = test::kSampleDir;
 const std::string kScan = kSample + "/velodyne/000000.bin";
 const std::string kCalib = kSample + "/calib/000000.txt";
 const std::string kLeft = kSample + "/image_2/000000.png";
@@ -746,7 +747,7 @@ TEST_F(DensifyCli, SigtermWhileSavingLeavesTheOldOutputAndNoTemporary) {
   const std::string arguments = kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kLeft +
                                 " -format ascii -disparity " + p("d.png");
   // The shell waits for "Saving" on the tool's output, then sends SIGTERM.
-  const std::string script = "(" + std::string(LIDAR_SGM_DENSIFY_TOOL) + " " + arguments + " > " + p("log") +
+  const std::string script = "(" + std::string(test::kDensifyTool) + " " + arguments + " > " + p("log") +
                              " 2>&1 & pid=$!; for i in $(seq 600); do grep -q Saving " + p("log") +
                              " && break; sleep 0.05; done; kill -TERM $pid; wait $pid; echo status=$?)";
   FILE* pipe = popen(script.c_str(), "r");

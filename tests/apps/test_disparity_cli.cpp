@@ -15,6 +15,7 @@
 
 #include "common/synthetic_stereo.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -26,7 +27,7 @@ struct RunResult {
 };
 
 RunResult runTool(const std::string& arguments) {
-  const std::string command = std::string(LIDAR_SGM_DISPARITY_TOOL) + " " + arguments + " 2>&1";
+  const std::string command = std::string(test::kDisparityTool) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 512> buffer{};

@@ -20,6 +20,7 @@
 #include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -32,7 +33,7 @@ struct RunResult {
 
 /// `environment` goes before the command ("NAME=value ..."), as a shell reads it.
 RunResult runTool(const std::string& arguments, const std::string& environment = "") {
-  const std::string command = environment + " " + std::string(LIDAR_SGM_EVAL_TOOL) + " " + arguments + " 2>&1";
+  const std::string command = environment + " " + std::string(test::kEvalTool) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 512> buffer{};

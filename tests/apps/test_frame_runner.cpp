@@ -76,6 +76,9 @@ TEST(FrameRunner, AnEscapingExceptionStopsTheRunAndReachesTheCaller) {
                    [&](std::size_t index, int) {
                      ++started;
                      if (index == 5) throw std::runtime_error("disk full");
+                     // A frame takes time, as a real one does: without it, the other worker could
+                     // finish all 50 before the failing one is scheduled again (seen on 2 loaded cores).
+                     std::this_thread::sleep_for(std::chrono::milliseconds(20));
                      return recordOf(index);
                    },
                    [](std::size_t, const FrameRecord&) {}, [] { return false; }),

@@ -21,6 +21,7 @@
 
 #include "lidar_sgm/synth/scene.hpp"
 #include "lidar_sgm/synth/sequence.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -63,14 +64,14 @@ TEST(MapAccuracy, NinetyFivePercentOfTheMergedMapLiesWithinTenCentimetresOfTheTr
   drive.frames = 4;
   drive.step = 2.0;  // 4 frames over 6 m: most of the map is seen by several frames
   std::string log;
-  ASSERT_EQ(shell(std::string(LIDAR_SGM_SYNTH_TOOL) + " -out " + (root / "seq").string() + " -sequence 4 -step 2 -seed 3 2>&1", log), 0) << log;
+  ASSERT_EQ(shell(std::string(test::kSynthTool) + " -out " + (root / "seq").string() + " -sequence 4 -step 2 -seed 3 2>&1", log), 0) << log;
   // Stereo depth error grows with the square of the range (0.25 px is 6 cm at 10 m, 26 cm at 20 m
   // on this rig), so 10 cm is a fair bound for points up to 10 m from their camera; farther
   // points are measured in docs/RESULTS.md. LIDAR_SGM_MAP_ACCURACY_OPTIONS replaces the options
   // to measure others.
   const char* other = std::getenv("LIDAR_SGM_MAP_ACCURACY_OPTIONS");
   const std::string options = other ? other : "-max_depth 10";
-  ASSERT_EQ(shell(std::string(LIDAR_SGM_BATCH_TOOL) + " -input_dir " + (root / "seq").string() + " -output_dir " +
+  ASSERT_EQ(shell(std::string(test::kBatchTool) + " -input_dir " + (root / "seq").string() + " -output_dir " +
                       (root / "out").string() + " -map " + (root / "map.pcd").string() + " " + options + " 2>&1",
                   log),
             0)

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/test_paths.hpp"
 #include "lidar_sgm/version.hpp"
 
 namespace lidar_sgm {
@@ -45,35 +46,35 @@ void PrintTo(const Tool& tool, std::ostream* os) { *os << tool.name; }
 
 std::vector<Tool> builtTools() {
   std::vector<Tool> tools;
-#ifdef LIDAR_SGM_TOOL_DISPARITY
-  tools.push_back({"lidar_sgm_disparity", LIDAR_SGM_TOOL_DISPARITY, "-alpha", "l.png r.png o.png -paths four",
-                   "option -paths: 'four' is not an integer", "l.png", "expected LEFT.png [RIGHT.png] OUT.png, got 1"});
-#endif
-#ifdef LIDAR_SGM_TOOL_SYNTH
-  tools.push_back({"lidar_sgm_synth", LIDAR_SGM_TOOL_SYNTH, "-out", "-out never_written -n two",
-                   "option -n: 'two' is not an integer", "stray", "unexpected argument 'stray'"});
-#endif
-#ifdef LIDAR_SGM_TOOL_DENSIFY
-  tools.push_back({"lidar_sgm_densify", LIDAR_SGM_TOOL_DENSIFY, "-calib", "in.bin out.pcd -calib c.txt -alpha high",
-                   "option -alpha: 'high' is not a finite number", "in.bin", "expected INPUT and OUTPUT, got 1"});
-#endif
-#ifdef LIDAR_SGM_TOOL_BATCH
-  tools.push_back({"lidar_sgm_batch", LIDAR_SGM_TOOL_BATCH, "-output_dir", "-list l.txt -output_dir o -alpha high",
-                   "option -alpha: 'high' is not a finite number", "stray",
-                   "unexpected argument 'stray' (the frames come from -input_dir or -list; see -h)"});
-#endif
-#ifdef LIDAR_SGM_TOOL_EVAL
-  tools.push_back({"lidar_sgm_eval", LIDAR_SGM_TOOL_EVAL, "-out", "-synth_frames ten",
-                   "option -synth_frames: 'ten' is not an integer", "stray", "unexpected argument 'stray'"});
-#endif
-#ifdef LIDAR_SGM_TOOL_BENCH
-  tools.push_back({"lidar_sgm_bench", LIDAR_SGM_TOOL_BENCH, "-runs", "-runs abc", "option -runs: 'abc' is not an integer",
-                   "stray", "unexpected argument 'stray'"});
-#endif
-#ifdef LIDAR_SGM_TOOL_OCCLUSION_STUDY
-  tools.push_back({"occlusion_filter_study", LIDAR_SGM_TOOL_OCCLUSION_STUDY, "-seeds", "-seeds many",
-                   "option -seeds: 'many' is not an integer", "stray", "unexpected argument 'stray'"});
-#endif
+  if (*test::kDisparityTool) {
+    tools.push_back({"lidar_sgm_disparity", test::kDisparityTool, "-alpha", "l.png r.png o.png -paths four",
+                     "option -paths: 'four' is not an integer", "l.png", "expected LEFT.png [RIGHT.png] OUT.png, got 1"});
+  }
+  if (*test::kSynthTool) {
+    tools.push_back({"lidar_sgm_synth", test::kSynthTool, "-out", "-out never_written -n two",
+                     "option -n: 'two' is not an integer", "stray", "unexpected argument 'stray'"});
+  }
+  if (*test::kDensifyTool) {
+    tools.push_back({"lidar_sgm_densify", test::kDensifyTool, "-calib", "in.bin out.pcd -calib c.txt -alpha high",
+                     "option -alpha: 'high' is not a finite number", "in.bin", "expected INPUT and OUTPUT, got 1"});
+  }
+  if (*test::kBatchTool) {
+    tools.push_back({"lidar_sgm_batch", test::kBatchTool, "-output_dir", "-list l.txt -output_dir o -alpha high",
+                     "option -alpha: 'high' is not a finite number", "stray",
+                     "unexpected argument 'stray' (the frames come from -input_dir or -list; see -h)"});
+  }
+  if (*test::kEvalTool) {
+    tools.push_back({"lidar_sgm_eval", test::kEvalTool, "-out", "-synth_frames ten",
+                     "option -synth_frames: 'ten' is not an integer", "stray", "unexpected argument 'stray'"});
+  }
+  if (*test::kBenchTool) {
+    tools.push_back({"lidar_sgm_bench", test::kBenchTool, "-runs", "-runs abc", "option -runs: 'abc' is not an integer",
+                     "stray", "unexpected argument 'stray'"});
+  }
+  if (*test::kOcclusionStudyTool) {
+    tools.push_back({"occlusion_filter_study", test::kOcclusionStudyTool, "-seeds", "-seeds many",
+                     "option -seeds: 'many' is not an integer", "stray", "unexpected argument 'stray'"});
+  }
   return tools;
 }
 
@@ -156,9 +157,9 @@ TEST_P(ToolOptions, OutputFilterOptionsAreListedAndChecked) {
 INSTANTIATE_TEST_SUITE_P(EveryTool, ToolOptions, ::testing::ValuesIn(builtTools()),
                          [](const ::testing::TestParamInfo<Tool>& tool) { return std::string(tool.param.name); });
 
-#ifdef LIDAR_SGM_TOOL_EVAL
 TEST(EvalToolOptions, WithoutArgumentsPrintsThePlanAndRunsNothing) {
-  const RunResult r = run(LIDAR_SGM_TOOL_EVAL, "");
+  if (!*test::kEvalTool) GTEST_SKIP() << "lidar_sgm_eval is not built";
+  const RunResult r = run(test::kEvalTool, "");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   for (const char* part : {"protocols: P1, P2, P3", "methods:", "outputs:", "-out DIR is required",
                            "disparity range from each frame's LiDAR (without LiDAR: the frame's)"}) {
@@ -166,7 +167,6 @@ TEST(EvalToolOptions, WithoutArgumentsPrintsThePlanAndRunsNothing) {
   }
   EXPECT_EQ(r.output.find("Loading"), std::string::npos) << r.output;
 }
-#endif
 
 }  // namespace
 }  // namespace lidar_sgm

@@ -5,13 +5,15 @@
 #include <filesystem>
 #include <string>
 
+#include "common/test_paths.hpp"
+
 namespace lidar_sgm {
 namespace test {
 
 /// $LIDAR_SGM_DATA, else the ../shared/data found at configure time.
 inline std::string sharedDataRoot() {
   if (const char* env = std::getenv("LIDAR_SGM_DATA")) return env;
-  return LIDAR_SGM_SHARED_DATA;
+  return kSharedDataDir;
 }
 
 inline bool haveSharedData(const std::string& folder) {

@@ -12,6 +12,7 @@
 
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -27,7 +28,7 @@ std::ostream& operator<<(std::ostream& out, const HostileFile& file) { return ou
 class HostileCloud : public ::testing::TestWithParam<HostileFile> {};
 
 TEST_P(HostileCloud, IsRefusedWithAMessageNamingFileAndProblem) {
-  const std::string path = (fs::path(LIDAR_SGM_HOSTILE_DATA) / GetParam().name).string();
+  const std::string path = (fs::path(test::kHostileDataDir) / GetParam().name).string();
   ASSERT_TRUE(fs::exists(path)) << path;
   const auto start = std::chrono::steady_clock::now();
   try {
@@ -68,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Images: every reader the tools use goes through the same signature check before OpenCV.
 TEST(HostileImage, DicomMagicBehindAPngLookalikeIsRefusedBeforeOpenCv) {
-  const std::string path = (fs::path(LIDAR_SGM_HOSTILE_DATA) / "png_dicom_magic.png").string();
+  const std::string path = (fs::path(test::kHostileDataDir) / "png_dicom_magic.png").string();
   ASSERT_TRUE(fs::exists(path)) << path;
   const std::string expected = "cannot read image '" + path + "': not a PNG, JPEG or PGM/PPM file";
   for (const auto& read : {+[](const std::string& p) { io::readImage(p); },

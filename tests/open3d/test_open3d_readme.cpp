@@ -25,6 +25,7 @@ std::shared_ptr<open3d::geometry::PointCloud> densify(const open3d::geometry::Po
 #include <string>
 
 #include "open3d/open3d_test_helpers.hpp"
+#include "common/test_paths.hpp"
 
 namespace {
 
@@ -62,13 +63,13 @@ std::string uncomment(const std::string& block) {
 
 TEST(Open3dReadmeExample, RunsOnTheSample) {
   // The sample scan, as a KITTI .bin (x, y, z, reflectance as float32).
-  std::ifstream in(std::string(LIDAR_SGM_SAMPLE_DIR) + "/velodyne/000000.bin", std::ios::binary);
+  std::ifstream in(std::string(lidar_sgm::test::kSampleDir) + "/velodyne/000000.bin", std::ios::binary);
   open3d::geometry::PointCloud scan;
   float p[4];
   while (in.read(reinterpret_cast<char*>(p), sizeof(p))) scan.points_.emplace_back(p[0], p[1], p[2]);
   ASSERT_GT(scan.points_.size(), 30000u);  // the sample holds the points in the camera's view (31 598)
 
-  const std::shared_ptr<open3d::geometry::PointCloud> dense = densify(scan, LIDAR_SGM_SAMPLE_DIR, "000000");
+  const std::shared_ptr<open3d::geometry::PointCloud> dense = densify(scan, lidar_sgm::test::kSampleDir, "000000");
   // 1242x375 pixels; the scan covers the lower ~2/3 of the image.
   EXPECT_GT(dense->points_.size(), 150000u);
   ASSERT_EQ(dense->colors_.size(), dense->points_.size());
@@ -83,7 +84,7 @@ TEST(Open3dReadmeExample, RunsOnTheSample) {
 }
 
 TEST(Open3dReadmeExample, ReadmeHeaderAndThisFileShowTheSameCode) {
-  const std::string root = LIDAR_SGM_SOURCE_DIR;
+  const std::string root = lidar_sgm::test::kSourceDir;
   const std::string here = between(readText(root + "/tests/open3d/test_open3d_readme.cpp"),
                                    "---- begin README example", "---- end README example");
   const std::string readme = readText(root + "/README.md");

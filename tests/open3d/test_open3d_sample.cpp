@@ -22,11 +22,12 @@
 #include "lidar_sgm/open3d/densify.hpp"
 #include "lidar_sgm/pcl/sgm_densification.hpp"
 #include "open3d/open3d_test_helpers.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
 
-const std::string kSample = LIDAR_SGM_SAMPLE_DIR;
+const std::string kSample = test::kSampleDir;
 
 std::shared_ptr<::open3d::geometry::Image> readOpen3d(const std::string& path) {
   auto image = std::make_shared<::open3d::geometry::Image>();

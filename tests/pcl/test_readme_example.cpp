@@ -33,6 +33,7 @@ pcl::PointCloud<pcl::PointXYZRGB> densify(const std::string& dir, const std::str
 #include <sstream>
 #include <string>
 #include <vector>
+#include "common/test_paths.hpp"
 
 namespace {
 
@@ -69,7 +70,7 @@ std::string uncomment(const std::string& block) {
 }  // namespace
 
 TEST(ReadmeExample, RunsOnTheSample) {
-  const pcl::PointCloud<pcl::PointXYZRGB> dense = densify(LIDAR_SGM_SAMPLE_DIR, "000000");
+  const pcl::PointCloud<pcl::PointXYZRGB> dense = densify(lidar_sgm::test::kSampleDir, "000000");
   // 1242x375 pixels; the scan covers the lower ~2/3 of the image (about 31 600 points).
   EXPECT_GT(dense.size(), 150000u);
   EXPECT_TRUE(dense.is_dense);
@@ -83,7 +84,7 @@ TEST(ReadmeExample, RunsOnTheSample) {
 }
 
 TEST(ReadmeExample, ReadmeHeaderAndThisFileShowTheSameCode) {
-  const std::string root = LIDAR_SGM_SOURCE_DIR;
+  const std::string root = lidar_sgm::test::kSourceDir;
   const std::string here = between(readText(root + "/tests/pcl/test_readme_example.cpp"),
                                    "---- begin README example", "---- end README example");
   const std::string readme = readText(root + "/README.md");

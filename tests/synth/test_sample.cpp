@@ -12,6 +12,7 @@
 
 #include "lidar_sgm/synth/encoding.hpp"
 #include "lidar_sgm/synth/frame.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -39,7 +40,7 @@ const synth::Frame& freshSample() {
 }
 
 cv::Mat readPng(const std::string& folder) {
-  const fs::path path = fs::path(LIDAR_SGM_SAMPLE_DIR) / folder / "000000.png";
+  const fs::path path = fs::path(test::kSampleDir) / folder / "000000.png";
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
   EXPECT_FALSE(image.empty()) << path;
   return image;
@@ -73,7 +74,7 @@ long differingPixels(const cv::Mat& mat, const Image<T>& image) {
 class SynthSample : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(fs::path(LIDAR_SGM_SAMPLE_DIR) / "calib" / "000000.txt")) {
+    if (!fs::exists(fs::path(test::kSampleDir) / "calib" / "000000.txt")) {
       FAIL() << "data/sample is missing: regenerate it with the command in data/sample/README.md";
     }
   }
@@ -92,7 +93,7 @@ TEST_F(SynthSample, ImagesAndGroundTruthMatchAFreshRender) {
 
 TEST_F(SynthSample, LidarAndCalibrationMatchAFreshRender) {
   const synth::Frame& frame = freshSample();
-  const fs::path dir(LIDAR_SGM_SAMPLE_DIR);
+  const fs::path dir(test::kSampleDir);
   EXPECT_EQ(readFile(dir / "calib" / "000000.txt"), synth::kittiCalibrationText(frame.rig, false));
   const std::string committed = readFile(dir / "velodyne" / "000000.bin");
   const std::string fresh = synth::velodyneBytes(frame.lidar);
@@ -103,7 +104,7 @@ TEST_F(SynthSample, LidarAndCalibrationMatchAFreshRender) {
 
 TEST_F(SynthSample, StaysSmall) {
   std::uintmax_t bytes = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(LIDAR_SGM_SAMPLE_DIR)) {
+  for (const auto& entry : fs::recursive_directory_iterator(test::kSampleDir)) {
     if (entry.is_regular_file()) bytes += entry.file_size();
   }
   EXPECT_LT(bytes, 3u * 1024u * 1024u);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "synth/synth_test_helpers.hpp"
+#include "common/test_paths.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -25,7 +26,7 @@ struct RunResult {
 };
 
 RunResult runTool(const std::string& arguments) {
-  const std::string command = std::string(LIDAR_SGM_SYNTH_TOOL) + " " + arguments + " 2>&1";
+  const std::string command = std::string(test::kSynthTool) + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 512> buffer{};

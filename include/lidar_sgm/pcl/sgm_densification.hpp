@@ -16,8 +16,11 @@
 #include "lidar_sgm/pipeline/densifier.hpp"
 
 /// The point types src/pcl/sgm_densification.cpp instantiates (Boost.PP sequences, as PCL's own):
-/// every PCL type with x, y, z in, and these out. Other types: include impl/sgm_densification.hpp.
-#define LIDAR_SGM_PCL_INPUT_POINT_TYPES PCL_XYZ_POINT_TYPES
+/// the scans LiDAR drivers and maps give (x, y, z with intensity or color) in, and these out. Any
+/// other type with x, y, z (the rest of PCL_XYZ_POINT_TYPES, a driver's own type): define
+/// PCL_NO_PRECOMPILE before any PCL header, as for PCL's own classes (a type of PCL's own may also
+/// include lidar_sgm/pcl/impl/sgm_densification.hpp).
+#define LIDAR_SGM_PCL_INPUT_POINT_TYPES (pcl::PointXYZ)(pcl::PointXYZI)(pcl::PointXYZRGB)(pcl::PointXYZRGBA)
 #define LIDAR_SGM_PCL_OUTPUT_POINT_TYPES (pcl::PointXYZ)(pcl::PointXYZRGB)(pcl::PointXYZRGBA)(pcl::PointXYZI)
 /// The types with the per-point confidence (point_types.hpp), instantiated for these inputs.
 #define LIDAR_SGM_PCL_CONFIDENCE_INPUT_POINT_TYPES (pcl::PointXYZ)(pcl::PointXYZI)
