@@ -66,12 +66,13 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:exitcode=86"
 # Leaks inside third-party libraries only (each explained in the file).
 export LSAN_OPTIONS="suppressions=$root/scripts/lsan_suppressions.txt"
 
-# RelWithDebInfo at -O1 and with assertions (no -DNDEBUG): -O0 (Debug) makes the matcher's tests
-# several times slower under ASan, -O2 costs build time for nothing the sanitizers need.
+# RelWithDebInfo at -O1, with line tables only and with assertions (no -DNDEBUG): -O0 (Debug)
+# makes the matcher's tests several times slower under ASan, -O2 costs build time for nothing the
+# sanitizers need, and the reports' stacks need files and lines, not variables.
 start=$SECONDS
 mkdir -p "$build"
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DLIDAR_SGM_BUILD_TESTS=ON -DLIDAR_SGM_BUILD_FUZZERS=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DLIDAR_SGM_BUILD_TESTS=ON -DLIDAR_SGM_BUILD_FUZZERS=ON \
   -DLIDAR_SGM_WITH_CUDA=OFF -DLIDAR_SGM_WITH_CPU_BACKEND=ON "${skip[@]}" "${lidar_sgm_launcher[@]}" \
   > "$build/sanitize-configure.log" || { cat "$build/sanitize-configure.log"; exit 1; }
 cmake --build "$build" -j"$jobs" "${targets[@]}" > "$build/sanitize-build.log" 2>&1 ||
@@ -97,11 +98,12 @@ else
     "$build/sanitize-scripts.txt"
   mkdir -p "$build/suite-logs"
   run_suite() {  # EXECUTABLE WORKING_FOLDER: all its tests in one process; the log's end on failure
-    local log
+    local log start=$SECONDS
     log="$build/suite-logs/$(basename "$1").log"
     if (cd "$2" && timeout 1800 "$1" --gtest_brief=1 > "$log" 2>&1); then
-      echo "test_sanitizers: $(basename "$1"): $(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$log")" \
-        "$(grep -o 'PASSED.*' "$log" | head -1)"
+      echo "test_sanitizers: $(basename "$1"): $(grep -o '[0-9]* tests\? from [0-9]* test suites\? ran' "$log")," \
+        "$(grep -o 'PASSED  \] [0-9]*' "$log" | grep -o '[0-9]*$') passed," \
+        "$( (grep -o 'SKIPPED \] [0-9]*' "$log" || echo 0) | grep -o '[0-9]*$' | head -1) skipped, $((SECONDS - start)) s"
     else
       echo "test_sanitizers: $(basename "$1") FAILED (log $log):"
       tail -60 "$log"
