@@ -29,15 +29,18 @@ done
 phases="$(mktemp)"
 export LIDAR_SGM_PHASE_LOG="$phases"
 total_start=$SECONDS
-phase() { echo "$1 $2" >> "$phases"; }
+phase() { echo "$1 $2" >> "$phases"; }  # NAME SECONDS; NAME may hold spaces
 report() {
-  local status=$?
+  local status=$? line name seconds
   echo "test.sh: time per phase$([ $status -ne 0 ] && echo " (stopped: exit code $status)")"
   phase total $((SECONDS - total_start))
-  while read -r name seconds; do
+  while read -r line; do
+    seconds=${line##* }
+    name=${line% *}
     printf 'test.sh:   %-22s %3dm%02ds\n' "$name" $((seconds / 60)) $((seconds % 60))
   done < "$phases"
   rm -f "$phases"
+  return $status
 }
 trap report EXIT
 
