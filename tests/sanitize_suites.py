@@ -1,11 +1,16 @@
 #!/usr/bin/env python3
-"""Splits a ctest selection (ctest -N --show-only=json-v1) for scripts/test_sanitizers.sh: the
-GoogleTest suites, one line per executable ("EXECUTABLE WORKING_FOLDER", most tests first, so that
-the longest start first), and the other tests by name (anchored regexes, one per line).
+"""Turns a ctest selection (ctest -N --show-only=json-v1) into the jobs of scripts/test_sanitizers.sh,
+one per line, for a pool of SHARDS workers:
 
-A GoogleTest test is one whose command is an executable followed by --gtest_filter=...; a suite
-is run whole only when the selection holds all of its tests, else its tests stay with ctest.
-Usage: sanitize_suites.py TESTS.json SUITES.txt SCRIPTS.txt
+  ctest REGEX                            tests that are not GoogleTest suites (scripts), by name
+  suite EXECUTABLE FOLDER INDEX TOTAL    shard INDEX of TOTAL of a GoogleTest suite, run whole
+
+Each suite is cut into SHARDS shards (GoogleTest's GTEST_SHARD_INDEX / GTEST_TOTAL_SHARDS), so that
+the longest suite does not keep one worker busy while the others wait; the scripts come first, then
+the shards of the suites with the most tests. A GoogleTest test is one whose command is an
+executable followed by --gtest_filter=...; a suite is run whole only when the selection holds all
+of its tests, else its tests stay with ctest.
+Usage: sanitize_suites.py TESTS.json SHARDS JOBS.txt
 """
 import collections
 import json
@@ -14,8 +19,12 @@ import subprocess
 import sys
 
 
+def regex(name):
+    return "^" + re.sub(r"([][.*+?^$|()\\{}])", r"\\\1", name) + "$"
+
+
 def main():
-    tests_json, suites_txt, scripts_txt = sys.argv[1:4]
+    tests_json, shards, jobs_txt = sys.argv[1], int(sys.argv[2]), sys.argv[3]
     with open(tests_json) as f:
         tests = json.load(f)["tests"]
     per_executable = collections.defaultdict(list)
@@ -38,12 +47,12 @@ def main():
         else:  # part of a suite: leave those tests to ctest
             scripts.extend(names)
     suites.sort(reverse=True)
-    with open(suites_txt, "w") as f:
-        for _, executable in suites:
-            f.write(f"{executable} {folders[executable]}\n")
-    with open(scripts_txt, "w") as f:
-        for name in scripts:
-            f.write("^" + re.sub(r"([][.*+?^$|()\\{}])", r"\\\1", name) + "$\n")
+    with open(jobs_txt, "w") as f:
+        if scripts:
+            f.write("ctest " + "|".join(regex(name) for name in scripts) + "\n")
+        for count, executable in suites:
+            for index in range(min(shards, count)):
+                f.write(f"suite {executable} {folders[executable]} {index} {min(shards, count)}\n")
 
 
 if __name__ == "__main__":
