@@ -34,8 +34,9 @@ elapsed() { printf '%dm%02ds' $(($1 / 60)) $(($1 % 60)); }
 # - e2e tool runs (densify, disparity, batch, eval, synth CLIs): the Densifier, readers and writers
 #   the unit tier runs, on larger inputs; the tools' own parsing is fuzzed (fuzz_arguments) and
 #   their bad-input paths are the hostile cases.
-# - e2e evaluation protocols and KITTI frames: the matcher and metrics of the unit tier on real
-#   frames; sanitized they took 2-4 minutes each, for no code the unit tier does not reach.
+# - e2e KITTI runs (the P1 protocol on real frames, the KITTI frames through the PCL class): the
+#   matcher, protocols and metrics of the unit tier on whole real frames; sanitized they took 2-4
+#   minutes each, for no code the unit tier does not reach.
 # - install: builds downstream projects without -fsanitize against the installed libraries; it
 #   checks packaging, not memory (and cannot link against sanitized static libraries).
 # - slurm: starts Debian's unsanitized munged, slurmctld and slurmd as root to run the batch tool.
