@@ -1,5 +1,5 @@
 #pragma once
-// All-or-nothing outputs for the tools that write several files from one run (issue 15): each
+// All-or-nothing outputs for the tools that write several files from one run: each
 // output is written to a hidden temporary beside it, and the temporaries are renamed into place
 // only when every one of them was written. A failure, an exception or SIGINT/SIGTERM leaves the
 // user's files as they were and no temporary behind.

@@ -3,7 +3,7 @@
 /// T_cam_lidar, as cv::FileStorage writes it) parsed with yaml-cpp.
 ///
 /// Why not cv::FileStorage: hostile files made OpenCV 4.6's parser hang forever (33 bytes) or ask
-/// for 32 GB (issue 15). yaml-cpp is fuzzed upstream (OSS-Fuzz) and bounds its nesting depth.
+/// for 32 GB. yaml-cpp is fuzzed upstream (OSS-Fuzz) and bounds its nesting depth.
 
 #include <string>
 

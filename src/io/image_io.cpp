@@ -37,7 +37,7 @@ std::uint32_t bigEndian32(const unsigned char* bytes) {
 }
 
 // A PNG's size is in its first chunk (IHDR): checked before decoding, since OpenCV allocates
-// the whole image first (a 1 MB PNG of 30000x30000 asked for 8.6 GB, issue 15).
+// the whole image first (a 1 MB PNG of 30000x30000 asked for 8.6 GB).
 void requirePngSizeWithinLimit(const std::string& path) {
   unsigned char header[24] = {};
   std::ifstream in(path, std::ios::binary);

@@ -2,7 +2,7 @@
 /// @file lzf_decoder.hpp  (private) A bounded LZF decoder for PCD "DATA binary_compressed".
 ///
 /// PCL's own lzfDecompress trusts the sizes in the file and is where hostile PCD files crashed
-/// it (issue 15); this one checks every literal run and back reference against both buffers.
+/// it; this one checks every literal run and back reference against both buffers.
 
 #include <cstddef>
 #include <cstdint>

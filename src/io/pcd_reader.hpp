@@ -4,7 +4,7 @@
 ///
 /// Why not PCL's reader: fed hostile files it wrote out of bounds (readBodyASCII's
 /// copyStringValue, readBodyBinary), trusted binary_compressed sizes (8 GB asked for by a
-/// 100-byte file) and turned text that is not a number into 0 without a word (issue 15).
+/// 100-byte file) and turned text that is not a number into 0 without a word.
 
 #include <cstddef>
 #include <cstdint>

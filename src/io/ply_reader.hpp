@@ -4,7 +4,7 @@
 /// before anything is allocated.
 ///
 /// Why not PCL's PLYReader: hostile headers hit its asserts (a vertex count of 4294967297, a
-/// list count of 0xFFFFFFFF) and "element vertex -40" made it loop forever (issue 15).
+/// list count of 0xFFFFFFFF) and "element vertex -40" made it loop forever.
 
 #include <cstddef>
 #include <cstdint>

@@ -670,7 +670,7 @@ TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
   expectFailure(kScan + out + calib + pair + " -bogus 1", "unknown option -bogus");
   expectFailure(kScan + out + calib + pair + " -alpha", "needs a value");
   expectFailure(kScan + calib + pair, "expected INPUT and OUTPUT, got 1");
-  // Limits (issue 15): each named, before anything large is allocated.
+  // Limits: each named, before anything large is allocated.
   expectFailure(kScan + out + calib + " -image_size 100000x100000",
                 "option -image_size: '100000x100000' is larger than the limit of 16384x16384 pixels");
   expectFailure(kScan + out + calib + pair + " -max_points 1000",
@@ -713,7 +713,7 @@ TEST_F(DensifyCli, FailedRunLeavesAnExistingOutputUntouched) {
   EXPECT_TRUE(hiddenFiles().empty());
 }
 
-// All-or-nothing (issue 15): an output that fails after others were written leaves every file as
+// All-or-nothing: an output that fails after others were written leaves every file as
 // it was. The shell's file-size limit makes the second picture fail once the cloud is written
 // (SIGXFSZ ignored, so the write fails with EFBIG instead of killing the tool).
 TEST_F(DensifyCli, ALateWriteFailureReplacesNoOutputAndLeavesNoTemporary) {

@@ -1,5 +1,5 @@
 // OutputTransaction: a run's outputs appear together or not at all, and what an interrupted run
-// leaves is recognised and removed by the next (issue 15).
+// leaves is recognised and removed by the next.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>

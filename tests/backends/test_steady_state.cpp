@@ -1,5 +1,5 @@
 // After the first frame of a given size, a fast backend's frame allocates nothing: every buffer
-// is kept (issue 9: "no allocation per frame after the first frame of a given size"). Counted
+// is kept ("no allocation per frame after the first frame of a given size"). Counted
 // with a replaced global operator new, so this suite is its own executable.
 #include <gtest/gtest.h>
 

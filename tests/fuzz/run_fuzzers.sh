@@ -33,7 +33,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus" "$findings"
   log="$build/findings/$target.log"
   # -timeout 10: a hang is an input that takes over 10 s; -rss_limit_mb/-malloc_limit_mb 2048:
-  # an allocation over 2 GB is a finding (issue 15's targets).
+  # an allocation over 2 GB is a finding (the readers' limits).
   set +e
   runs=()
   if [ -n "${FUZZ_RUNS:-}" ]; then runs=(-runs="$FUZZ_RUNS"); fi

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 15's hostile cases, run through lidar_sgm_densify as a user would run it.
+"""The hostile cases, run through lidar_sgm_densify as a user would run it.
 
 Every case must end with exit code 1 (SIGTERM: killed by the signal), print "Error: " and the
 problem, leave the output that was there before untouched and no temporary behind, within 10 s

@@ -383,7 +383,7 @@ TEST_F(CalibrationIo, YamlSyntaxErrorBecomesRuntimeErrorNamingTheFile) {
 
 TEST_F(CalibrationIo, FocalLengthAndBaselineOutsideTheirSaneRangesNameTheKey) {
   std::vector<std::string> lines = syntheticObjectLines();
-  lines[1] = "P2: 1e-300 0 600 0 0 700 180 0 0 0 1 0";  // issue 15: a 3.8e302 m baseline followed
+  lines[1] = "P2: 1e-300 0 600 0 0 700 180 0 0 0 1 0";  // a 3.8e302 m baseline followed
   lines[2] = "P3: 1e-300 0 600 -350 0 700 180 0 0 0 1 0";
   const std::string tiny = writeLines("tiny.txt", lines);
   expectErrorContaining([&] { io::readKittiCalibration(tiny, 640, 480); }, {tiny + ":2: key 'P2'", "[1, 1000000] px"});

@@ -1,4 +1,4 @@
-// The regression corpus of issue 15 (tests/data/hostile/, README there): files that crashed,
+// The readers' regression corpus (tests/data/hostile/, README there): files that crashed,
 // hung or fooled the readers, each now refused with a std::runtime_error naming the file and
 // the problem, through the same entry point the tools use (io::readCloud).
 
@@ -44,7 +44,7 @@ TEST_P(HostileCloud, IsRefusedWithAMessageNamingFileAndProblem) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Issue15, HostileCloud,
+    Corpus, HostileCloud,
     ::testing::Values(HostileFile{"pcd_size_again_after_type.pcd", "'SIZE' appears again"},
                       HostileFile{"pcd_compressed_sizes_zero.pcd", "declares 0 uncompressed bytes"},
                       HostileFile{"pcd_compressed_size_huge.pcd", "declares 4294967280 uncompressed bytes"},

@@ -107,7 +107,7 @@ TEST_F(ImageIo, ColorizedInvalidPixelsAreBlack) {
 }
 
 TEST_F(ImageIo, PngLargerThanTheLimitIsRefusedFromItsHeader) {
-  // Issue 15: a 30000x30000 PNG took 8.6 GB before failing. Only the header matters here: the
+  // A 30000x30000 PNG took 8.6 GB before failing. Only the header matters here: the
   // size is refused before OpenCV sees the file.
   const unsigned char header[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
                                   0, 0, 0x75, 0x30, 0, 0, 0x75, 0x30, 8, 0, 0, 0, 0, 0, 0, 0, 0};

@@ -349,7 +349,7 @@ TEST(Densifier, KeepsWorkingAcrossFramesAndBackends) {
   expectSameImage(densifier.disparity(), reference);
 }
 
-// ---- the disparity range from the LiDAR (issue 11) ------------------------------------------
+// ---- the disparity range from the LiDAR ------------------------------------------
 
 constexpr int kNearWidth = 161;  // odd sizes on purpose
 constexpr int kNearHeight = 45;

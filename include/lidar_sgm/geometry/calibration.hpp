@@ -16,7 +16,7 @@ namespace geometry {
 struct StereoCalibration {
   /// How far from orthonormal a rotation read from a file may be.
   static constexpr double kRotationTolerance = 1e-4;
-  /// Sane ranges, so that a typo (fx = 1e-300 gave a 3.8e302 m baseline, issue 15) is an error
+  /// Sane ranges, so that a typo (fx = 1e-300 gave a 3.8e302 m baseline) is an error
   /// and not a cloud: focal lengths [px] of real cameras lie well inside the first, stereo rigs'
   /// baselines [m] (a phone's to a wide survey rig's) inside the second.
   /// Largest image side [px] (io::kMaxImageSide too): a larger frame is refused before any allocation.

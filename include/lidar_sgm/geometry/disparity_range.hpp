@@ -26,7 +26,7 @@
 namespace lidar_sgm {
 namespace geometry {
 
-/// The rule's numbers (the defaults are the ones measured in docs/RESULTS.md, issue 11).
+/// The rule's numbers (the defaults are the ones measured in docs/RESULTS.md).
 struct DisparityRangeRule {
   int ignoredPoints = 10;          ///< largest disparities set aside as strays, in [0, 10000]
   double ignoredFraction = 0.01;   ///< ... but never more than this fraction of the points, in [0, 0.5]

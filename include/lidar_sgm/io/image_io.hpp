@@ -13,7 +13,7 @@
 namespace lidar_sgm {
 namespace io {
 
-/// The largest image side the readers accept [px] (issue 15): a PNG's size is checked from its
+/// The largest image side the readers accept [px]: a PNG's size is checked from its
 /// header before anything is decoded, other formats once decoded.
 constexpr int kMaxImageSide = 16384;
 
