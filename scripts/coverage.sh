@@ -43,7 +43,11 @@ for selection in "${selections[@]}"; do
   (cd "$build" && LLVM_PROFILE_FILE="$profiles/%4m.profraw" ctest -j"$(nproc)" --timeout 1200 "${filter[@]}" \
      > "$build/coverage/ctest-$n.log" 2>&1) || echo "coverage: some tests of '$selection' failed (build-coverage/coverage/ctest-$n.log)"
   llvm-profdata-14 merge -sparse "$profiles"/*.profraw -o "$build/coverage/$n.profdata"
-  llvm-cov-14 report -instr-profile "$build/coverage/$n.profdata" "${objects[@]}" "$root/src" > "$build/coverage/$n.txt" 2>/dev/null || true
-  total=$(grep '^TOTAL' "$build/coverage/$n.txt" | awk '{print $(NF-3)}')
-  echo "coverage: '$selection': lines of src/ executed: $total ($(grep '^TOTAL' "$build/coverage/$n.txt"))"
+  llvm-cov-14 report -instr-profile "$build/coverage/$n.profdata" "${objects[@]}" > "$build/coverage/$n.txt" 2>/dev/null || true
+  # The files of src/ only. With ccache's base directory the compilers saw relative paths, so the
+  # report names them ../src/...; without ccache, $root/src/.... Columns 8 and 9: lines, missed.
+  awk -v root="$root/src/" -v selection="$selection" '
+    index($1, "../src/") == 1 || index($1, root) == 1 { lines += $8; missed += $9 }
+    END { printf "coverage: %s: lines of src/ executed: %.2f %% (%d of %d)\n", selection,
+                 100 * (lines - missed) / lines, lines - missed, lines }' "$build/coverage/$n.txt"
 done

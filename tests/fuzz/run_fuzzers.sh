@@ -17,11 +17,10 @@ if [ ${#targets[@]} -eq 0 ]; then
 fi
 
 # The readers need no matcher: the SIMD backend (minutes to compile with ASan) is left out.
-launcher=()
-if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+source "$root/scripts/ccache_env.sh"
 mkdir -p "$build"
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLIDAR_SGM_BUILD_TESTS=OFF \
-  -DLIDAR_SGM_WITH_CUDA=OFF -DLIDAR_SGM_WITH_CPU_BACKEND=OFF -DLIDAR_SGM_BUILD_FUZZERS=ON "${launcher[@]}" \
+  -DLIDAR_SGM_WITH_CUDA=OFF -DLIDAR_SGM_WITH_CPU_BACKEND=OFF -DLIDAR_SGM_BUILD_FUZZERS=ON "${lidar_sgm_launcher[@]}" \
   > "$build/fuzz-configure.log" || { cat "$build/fuzz-configure.log"; exit 1; }
 cmake --build "$build" -j2 --target "${targets[@]}" > "$build/fuzz-build.log" || { tail -30 "$build/fuzz-build.log"; exit 1; }
 python3 "$root/tests/fuzz/make_seeds.py" "$build/seeds"
