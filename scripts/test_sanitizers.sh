@@ -87,7 +87,7 @@ echo "test_sanitizers: build $(elapsed $build_time)"
 # more than most tests take.
 # So each GoogleTest suite of the selection runs as $jobs processes (GoogleTest's shards), each
 # with its share of the suite's tests, and the other tests of the selection (scripts) through
-# ctest, all from one pool of $jobs workers (tests/sanitize_suites.py makes the jobs).
+# ctest, all from one pool of $jobs workers (tests/scripts/sanitize_suites.py makes the jobs).
 # LIDAR_SGM_SANITIZE_PER_TEST=1 runs every test through ctest instead (a process per test).
 # A failure here is reported at the end: the fuzzing still runs.
 failed=()
@@ -96,7 +96,7 @@ if [ "${LIDAR_SGM_SANITIZE_PER_TEST:-0}" = "1" ]; then
   (cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1200 "${labels[@]}") || failed+=(ctest)
 else
   (cd "$build" && ctest -N "${labels[@]}" --show-only=json-v1) > "$build/sanitize-tests.json"
-  python3 "$root/tests/sanitize_suites.py" "$build/sanitize-tests.json" "$jobs" "$build/sanitize-jobs.txt"
+  python3 "$root/tests/scripts/sanitize_suites.py" "$build/sanitize-tests.json" "$jobs" "$build/sanitize-jobs.txt"
   rm -rf "$build/suite-logs"
   mkdir -p "$build/suite-logs"
   run_job() {  # ctest REGEX | suite EXECUTABLE FOLDER INDEX TOTAL: its log's end on failure
