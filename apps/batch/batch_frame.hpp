@@ -21,7 +21,8 @@ struct FrameResult {
 /// Densifies frames one after another with the method options of `args` (densify_options.hpp),
 /// keeping one SGMDensification per output point type so that the matcher's buffers are
 /// allocated once per worker, not once per frame (the result does not depend on it: every
-/// buffer is written before it is read). Not thread-safe: one per worker thread.
+/// buffer is written before it is read, and each frame's setInputCloud() drops the images of
+/// the frame before). Not thread-safe: one per worker thread.
 class FrameDensifier {
  public:
   /// `width`/`height` is -image_size (0 = from the calibration or the images); `threads` the

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -129,14 +130,18 @@ class BatchTool : public ::testing::Test {
     return seq;
   }
 
-  /// lidar_sgm_densify's cloud of frame `i` of the object layout (fused unless `lidarOnly`).
-  std::string densified(int i, bool lidarOnly = false) {
+  /// What a frame is given besides its scan and calibration.
+  enum class Images { Pair, LeftOnly, None };
+
+  /// lidar_sgm_densify's cloud of frame `i` of the object layout, run on its own.
+  std::string densified(int i, Images images = Images::Pair) {
     const fs::path out = root_ / ("ref_" + stem(i) + ".pcd");
     const std::string s = synth_.string();
     std::string command = std::string(test::kDensifyTool) + " " + s + "/velodyne/" + stem(i) + ".bin " +
                           out.string() + " -calib " + s + "/calib/" + stem(i) + ".txt";
-    command += lidarOnly ? std::string(" -image_size ") + kSize
-                         : " -left " + s + "/image_2/" + stem(i) + ".png -right " + s + "/image_3/" + stem(i) + ".png";
+    if (images == Images::None) command += std::string(" -image_size ") + kSize;
+    if (images != Images::None) command += " -left " + s + "/image_2/" + stem(i) + ".png";
+    if (images == Images::Pair) command += " -right " + s + "/image_3/" + stem(i) + ".png";
     const RunResult r = shell(command + " 2>&1");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return readText(out);
@@ -281,7 +286,43 @@ TEST_F(BatchTool, ListFileFramesWithoutImagesRunLidarOnlyAsLidarSgmDensifyDoes) 
   EXPECT_TRUE(readText(out / "000000.pcd") == densified(0));
   const std::string lidarOnly = readText(out / "000001.pcd");
   EXPECT_NE(lidarOnly.find("FIELDS x y z confidence"), std::string::npos);
-  EXPECT_TRUE(lidarOnly == densified(1, true)) << "the LiDAR-only frame differs from lidar_sgm_densify's";
+  EXPECT_TRUE(lidarOnly == densified(1, Images::None)) << "the LiDAR-only frame differs from lidar_sgm_densify's";
+}
+
+TEST_F(BatchTool, EveryFrameGetsItsOwnImagesInEveryOrderAndJobCount) {
+  // A frame with a left image but no right one is LiDAR-only colored from its left image, as
+  // lidar_sgm_densify -left makes it, also when the worker densified a pair before it.
+  const std::string s = synth_.string();
+  const std::vector<Images> kinds{Images::Pair, Images::LeftOnly, Images::None, Images::Pair};
+  std::vector<std::string> expected;
+  for (int i = 0; i < kFrames; ++i) expected.push_back(densified(i, kinds[static_cast<std::size_t>(i)]));
+  std::vector<int> order{0, 1, 2, 3};
+  int runs = 0;
+  do {
+    std::ofstream list(root_ / "frames.txt");
+    for (const int i : order) {
+      const Images kind = kinds[static_cast<std::size_t>(i)];
+      list << s << "/velodyne/" << stem(i) << ".bin "
+           << (kind == Images::None ? std::string("-") : s + "/image_2/" + stem(i) + ".png") << ' '
+           << (kind == Images::Pair ? s + "/image_3/" + stem(i) + ".png" : std::string("-")) << ' ' << s << "/calib/"
+           << stem(i) << ".txt\n";
+    }
+    list.close();
+    for (const char* jobs : {"1", "2"}) {
+      const fs::path out = root_ / ("out_" + std::to_string(runs));
+      const RunResult r = batch("-list " + (root_ / "frames.txt").string() + " -output_dir " + out.string() +
+                                " -image_size " + kSize + " -jobs " + jobs);
+      ASSERT_EQ(r.exitCode, 0) << r.output;
+      for (int i = 0; i < kFrames; ++i) {
+        EXPECT_TRUE(readText(out / (stem(i) + ".pcd")) == expected[static_cast<std::size_t>(i)])
+            << "frame " << i << " of the order " << order[0] << order[1] << order[2] << order[3] << ", -jobs " << jobs
+            << " differs from lidar_sgm_densify's run of that frame alone";
+      }
+      fs::remove_all(out);
+      ++runs;
+    }
+  } while (std::next_permutation(order.begin() + 1, order.end()) && runs < 12);
+  EXPECT_EQ(runs, 12);
 }
 
 TEST_F(BatchTool, KittiRawDriveReadsTheDateFoldersCalibrationAsLidarSgmDensifyDoes) {

@@ -61,6 +61,11 @@ namespace lidar_sgm {
 /// }
 /// @endcode
 ///
+/// - Frames: the stereo pair and the color image belong to one frame. An object reused for
+///   the next frame (setInputCloud() after a filter()) drops the images that were not given
+///   again since that filter(): a frame without a pair is LiDAR-only and a frame without an
+///   image is uncolored, whatever the object densified before and in whichever order the
+///   setters are called. filter() again on the same cloud (a parameter sweep) keeps them.
 /// - Mode: no stereo pair -> LiDAR-only SGM (alpha is not used); with a pair -> fused
 ///   (alpha in (0, 1]; alpha 0 keeps the LiDAR only for the left-right check's coverage).
 /// - Indices set with setIndices() select the points that are projected; getProjectedLidar()'s
@@ -94,6 +99,10 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   SGMDensification() = default;
   ~SGMDensification() override = default;
 
+  /// The scan of a frame (PCL's setInputCloud). After a filter(), it starts a new frame: the
+  /// stereo pair and color image not given again since that filter() are dropped.
+  void setInputCloud(const typename PointCloudIn::ConstPtr& cloud) override;
+
   // ---- calibration and images (sgm_densification_opencv.hpp adds cv::Mat overloads) --------
 
   void setCalibration(const geometry::StereoCalibration& calibration) { densifier_.setCalibration(calibration); }
@@ -106,7 +115,7 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// 8- or 16-bit gray rectified pair (copied), both of the same depth, matched at that depth:
   /// ImageView<const uint8_t> or <const uint16_t> convert to it, as does io::grayView(cv::Mat).
   void setStereoPair(const GrayImageView& left, const GrayImageView& right);
-  /// Back to LiDAR-only mode.
+  /// Back to LiDAR-only mode (also what the next frame gets when no pair is given for it).
   void clearStereoPair();
   /// The image that colors the output (organized, the rectified left camera's size); also
   /// colors a LiDAR-only result.
@@ -282,6 +291,8 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
 
  private:
   void fail(PointCloudOut& output, const std::string& message);
+  /// Hands the frame's color to the densifier and marks the frame's images as used.
+  void useFrameImages();
   /// projected_ from the densifier's, with sourceIndex mapped through indices_ to the input.
   void takeProjected();
   /// Per pixel, the projected_ sample of the nearest point, -1 where there is none.
@@ -296,8 +307,15 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   std::string className_ = "SGMDensification";
   std::string cameraFrameId_ = "camera_left_rect";
   std::string lastError_;
-  std::string pendingError_;  ///< from a setter given unusable images, reported by filter()
-  bool explicitColor_ = false;
+  /// The frame's images, each with whether it was given since the last filter() (a frame's
+  /// own) and an error from a setter given unusable images, reported by filter().
+  std::string pairError_;
+  std::string colorError_;
+  Image<Rgb8> pairColor_;      ///< the left image of a color pair; empty for a gray pair
+  Image<Rgb8> explicitColor_;  ///< from setColorImage(): wins over pairColor_
+  bool pairGivenSinceFilter_ = false;
+  bool colorGivenSinceFilter_ = false;
+  bool filteredSinceCloud_ = false;  ///< filter() ran since the last setInputCloud()
 };
 
 }  // namespace lidar_sgm

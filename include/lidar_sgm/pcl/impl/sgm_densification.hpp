@@ -7,6 +7,7 @@
 #include <exception>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <pcl/console/print.h>
@@ -54,55 +55,88 @@ inline bool isOrganizedImage(const pcl::PointCloud<pcl::RGB>& image) {
 }  // namespace detail
 
 template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::setInputCloud(const typename PointCloudIn::ConstPtr& cloud) {
+  if (filteredSinceCloud_) {
+    // A new frame: what the last one was given and this one was not is not this frame's.
+    if (!pairGivenSinceFilter_) {
+      densifier_.clearStereoPair();
+      pairColor_ = Image<Rgb8>();
+      pairError_.clear();
+    }
+    if (!colorGivenSinceFilter_) {
+      explicitColor_ = Image<Rgb8>();
+      colorError_.clear();
+    }
+    filteredSinceCloud_ = false;
+  }
+  pcl::PCLBase<PointInT>::setInputCloud(cloud);
+}
+
+template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::setStereoPair(const ImageCloud& left, const ImageCloud& right) {
+  pairGivenSinceFilter_ = true;
+  pairColor_ = Image<Rgb8>();
   // Invalid images are remembered as an error for filter() (PCL setters do not throw).
   if (!detail::isOrganizedImage(left) || !detail::isOrganizedImage(right)) {
-    pendingError_ = "setStereoPair: the images must be organized clouds (width x height, height > 1)";
+    densifier_.clearStereoPair();
+    pairError_ = "setStereoPair: the images must be organized clouds (width x height, height > 1)";
     return;
   }
   const Image<std::uint8_t> l = detail::grayImage(left);
   const Image<std::uint8_t> r = detail::grayImage(right);
   try {
     densifier_.setStereoPair(l.view(), r.view());
-    pendingError_.clear();
+    pairError_.clear();
   } catch (const std::exception& e) {
-    pendingError_ = e.what();
+    densifier_.clearStereoPair();
+    pairError_ = e.what();
     return;
   }
-  if (!explicitColor_) {
-    const Image<Rgb8> color = detail::colorImage(left);
-    densifier_.setColorImage(color.view());
-  }
+  pairColor_ = detail::colorImage(left);
 }
 
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::setStereoPair(const GrayImageView& left, const GrayImageView& right) {
+  pairGivenSinceFilter_ = true;
+  // A gray pair colors through the densifier's gray fallback unless a color image is set.
+  pairColor_ = Image<Rgb8>();
   try {
     densifier_.setStereoPair(left, right);
-    pendingError_.clear();
+    pairError_.clear();
   } catch (const std::exception& e) {
-    pendingError_ = e.what();
+    densifier_.clearStereoPair();
+    pairError_ = e.what();
   }
-  // A gray pair colors through the densifier's gray fallback unless a color image is set.
-  if (!explicitColor_) densifier_.setColorImage(ImageView<const Rgb8>());
 }
 
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::clearStereoPair() {
+  pairGivenSinceFilter_ = true;
   densifier_.clearStereoPair();
-  if (!explicitColor_) densifier_.setColorImage(ImageView<const Rgb8>());
-  pendingError_.clear();
+  pairColor_ = Image<Rgb8>();
+  pairError_.clear();
 }
 
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::setColorImage(const ImageCloud& image) {
+  colorGivenSinceFilter_ = true;
+  explicitColor_ = Image<Rgb8>();
   if (!detail::isOrganizedImage(image)) {
-    pendingError_ = "setColorImage: the image must be an organized cloud (width x height, height > 1)";
+    colorError_ = "setColorImage: the image must be an organized cloud (width x height, height > 1)";
     return;
   }
-  const Image<Rgb8> color = detail::colorImage(image);
-  densifier_.setColorImage(color.view());
-  explicitColor_ = true;
+  explicitColor_ = detail::colorImage(image);
+  colorError_.clear();
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::useFrameImages() {
+  // The images given for this frame are now used: the next setInputCloud() starts a new one.
+  pairGivenSinceFilter_ = false;
+  colorGivenSinceFilter_ = false;
+  filteredSinceCloud_ = true;
+  const Image<Rgb8>& color = explicitColor_.empty() ? pairColor_ : explicitColor_;
+  densifier_.setColorImage(std::as_const(color).view());  // empty: the pair's gray, or none
 }
 
 template <typename PointInT, typename PointOutT>
@@ -154,8 +188,9 @@ float SGMDensification<PointInT, PointOutT>::intensityAt(int x, int y) const {
 template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
   lastError_.clear();
-  if (!pendingError_.empty()) {
-    fail(output, pendingError_);
+  useFrameImages();
+  if (!pairError_.empty() || !colorError_.empty()) {
+    fail(output, pairError_.empty() ? colorError_ : pairError_);
     return;
   }
   if (!input_) {
@@ -189,6 +224,9 @@ void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
 
   output.header = header;
   if (densifier_.reprojectionOptions().frame == geometry::OutputFrame::Camera) output.header.frame_id = cameraFrameId_;
+  // From default points: a field this frame does not write (color without an image) must not
+  // keep what an earlier frame wrote into a reused output cloud.
+  output.clear();
   output.resize(dense->size());
   output.width = static_cast<std::uint32_t>(dense->width);
   output.height = static_cast<std::uint32_t>(dense->height);
