@@ -147,6 +147,7 @@ int run(int argc, char** argv) {
   densifier.setCropToScan(!args.has("no_crop_to_scan"));
   densifier.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
   densifier.setOutputFilters(outputFilters);
+  densifier.setPairCheck(lidar_sgm::apps::pairCheckFrom(args));
   if (stereo) densifier.setStereoPair(lidar_sgm::io::grayView(left), lidar_sgm::io::grayView(right));
   Timer sgmTimer;
   const bool lidarOnly = !stereo;

@@ -11,7 +11,7 @@ const std::set<std::string>& filterValueOptions() {
 }
 
 const std::set<std::string>& filterFlagOptions() {
-  static const std::set<std::string> flags{"no_sky_filter", "no_outlier_filter"};
+  static const std::set<std::string> flags{"no_sky_filter", "no_outlier_filter", "no_pair_check"};
   return flags;
 }
 
@@ -25,7 +25,9 @@ std::string filterOptionsHelp() {
                 "                           window (default: %g)\n"
                 "  -no_outlier_filter       keep isolated and flying points (default: removed, with LiDAR)\n"
                 "  -outlier_min_neighbours N  a point needs N of its %d neighbours within %g %% of its disparity\n"
-                "                           (at least %g px), 0 = off (default: %d)\n",
+                "                           (at least %g px), 0 = off (default: %d)\n"
+                "  -no_pair_check           match a pair that looks swapped (default: refused when the LiDAR, or\n"
+                "                           without it most matches, find the right image on the wrong side)\n",
                 d.sky.brightLevel, 2 * d.sky.textureRadius + 1, 2 * d.sky.textureRadius + 1, d.sky.textureThreshold,
                 (2 * d.outliers.radius + 1) * (2 * d.outliers.radius + 1) - 1, 100.0 * d.outliers.relativeTolerance,
                 d.outliers.minTolerance, d.outliers.minNeighbours);
@@ -42,6 +44,8 @@ OutputFilterOptions outputFiltersFrom(const Arguments& args) {
   validate(o.outliers);
   return o;
 }
+
+bool pairCheckFrom(const Arguments& args) { return !args.has("no_pair_check"); }
 
 }  // namespace apps
 }  // namespace lidar_sgm

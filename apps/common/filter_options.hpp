@@ -1,5 +1,6 @@
 #pragma once
-// The Densifier's output-filter options (sky, isolated points), shared by the tools that run it.
+// The Densifier's output-filter options (sky, isolated points) and its check of the pair's
+// orientation, shared by the tools that run it.
 
 #include <set>
 #include <string>
@@ -17,6 +18,8 @@ const std::set<std::string>& filterFlagOptions();
 std::string filterOptionsHelp();
 /// The filter options from the command line, validated (std::invalid_argument names the bad one).
 OutputFilterOptions outputFiltersFrom(const Arguments& args);
+/// Whether a pair that looks swapped is refused (true unless -no_pair_check).
+bool pairCheckFrom(const Arguments& args);
 
 }  // namespace apps
 }  // namespace lidar_sgm

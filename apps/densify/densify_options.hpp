@@ -71,6 +71,7 @@ void configureDensification(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, co
   sgm.setCropToScan(!args.has("no_crop_to_scan"));
   sgm.setMinConfidence(minConfidenceFrom(args));
   sgm.setOutputFilters(outputFiltersFrom(args));
+  sgm.setPairCheck(pairCheckFrom(args));
   const OutputOptions out = outputOptionsFrom(args);
   sgm.setOutputFrame(out.frame);
   sgm.setMaxDepth(out.maxDepth);

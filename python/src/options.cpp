@@ -90,6 +90,7 @@ void configure(Densifier& densifier, const py::dict& parameters, OptionSet set) 
   densifier.setCropToScan(!args.has("no_crop_to_scan"));
   densifier.setMinConfidence(apps::minConfidenceFrom(args));
   densifier.setOutputFilters(apps::outputFiltersFrom(args));
+  densifier.setPairCheck(apps::pairCheckFrom(args));
   if (set == OptionSet::Match) {
     densifier.setComputeCloud(false);  // as lidar_sgm_disparity: the disparity only
     return;

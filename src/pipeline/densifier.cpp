@@ -192,6 +192,13 @@ void Densifier::match(const LidarPoints* lidar) {
     left = left16_.view();
     right = right16_.view();
   }
+  pairOrientation_ = PairOrientation();
+  if (pairCheck_ && !left.empty()) {
+    pairOrientation_ = useLidar ? pairOrientationFromLidar(left, right, projected_.samples)
+                                : pairOrientationFromStereo(left, right, usedParams_.minDisparity,
+                                                            usedParams_.numDisparities);
+    if (pairOrientation_.looksSwapped()) throw std::invalid_argument(swappedPairMessage(pairOrientation_));
+  }
   matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
   lastMode_ = matcher_->lastMode();
   if (cropToScan_ && lastMode_ == MatchMode::LidarOnly) {

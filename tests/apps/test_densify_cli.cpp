@@ -567,6 +567,15 @@ TEST_F(DensifyCli, EveryOutputFormatReadsBackTheSamePoints) {
   EXPECT_TRUE(hiddenFiles().empty());
 }
 
+TEST_F(DensifyCli, ASwappedPairIsRefusedUnlessTheCheckIsOff) {
+  const std::string swapped = kScan + " " + p("out.pcd") + " -calib " + kCalib + " -left " + kRight + " -right " + kLeft;
+  expectFailure(swapped, "the stereo pair looks swapped");
+  expectFailure(swapped, "-no_pair_check");
+  const RunResult r = runTool(swapped + " -no_pair_check");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(fs::exists(p("out.pcd")));
+}
+
 TEST_F(DensifyCli, FailsLoudlyAndLeavesNoOutput) {
   const std::string out = " " + p("out.pcd") + " ";
   const std::string calib = " -calib " + kCalib;

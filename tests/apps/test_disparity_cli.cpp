@@ -142,6 +142,15 @@ TEST_F(DisparityCli, TheSearchRangeComesFromTheLidarUnlessFixed) {
   EXPECT_NE(stereo.output.find("disparity range: [0, 128) px (fixed)"), std::string::npos) << stereo.output;
 }
 
+TEST_F(DisparityCli, ASwappedPairIsRefusedWithOrWithoutLidarUnlessTheCheckIsOff) {
+  const std::string swapped = p("right.png") + " " + p("left.png") + " " + p("out.png") + " -num_disparities 32";
+  expectFailure(swapped, "the stereo pair looks swapped: ");
+  expectFailure(swapped, "textured pixels");
+  expectFailure(swapped + " -lidar " + p("sparse.png"), "LiDAR points");
+  const RunResult r = runTool(swapped + " -no_pair_check");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+}
+
 TEST_F(DisparityCli, FailsLoudlyAndLeavesNoOutput) {
   const std::string lr = p("left.png") + " " + p("right.png") + " ";
   expectFailure(lr + p("out.png") + " -p1 100 -p2 50", "P2 = 50");

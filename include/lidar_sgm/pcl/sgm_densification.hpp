@@ -232,6 +232,9 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   void setOutlierFilter(bool enabled) { densifier_.outputFilters().outliers.enabled = enabled; }
   bool getOutlierFilter() const { return densifier_.outputFilters().outliers.enabled; }
   void setOutputFilters(const OutputFilterOptions& options) { densifier_.setOutputFilters(options); }
+  /// Whether a stereo pair that looks swapped is refused (default true; Densifier::setPairCheck).
+  void setPairCheck(bool check) { densifier_.setPairCheck(check); }
+  bool getPairCheck() const { return densifier_.pairCheck(); }
   const OutputFilterOptions& getOutputFilters() const { return densifier_.outputFilters(); }
 
   // ---- the output cloud: geometry::ReprojectionOptions; checked in filter() -----------------

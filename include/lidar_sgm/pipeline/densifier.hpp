@@ -19,6 +19,7 @@
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
+#include "lidar_sgm/pipeline/pair_orientation.hpp"
 
 namespace lidar_sgm {
 
@@ -125,6 +126,11 @@ class Densifier {
   /// by default, in the modes with LiDAR): what they remove is missing from disparity(), depth()
   /// and the cloud alike.
   void setOutputFilters(const OutputFilterOptions& o) { outputFilters_ = o; }
+  /// Whether a stereo pair that looks swapped (pair_orientation.hpp: the LiDAR's disparities,
+  /// or without LiDAR most matches, find the right image on the wrong side) is refused with
+  /// std::invalid_argument (default true). Off, it is matched as given.
+  void setPairCheck(bool check) { pairCheck_ = check; }
+  bool pairCheck() const { return pairCheck_; }
   const OutputFilterOptions& outputFilters() const { return outputFilters_; }
   OutputFilterOptions& outputFilters() { return outputFilters_; }
 
@@ -178,6 +184,8 @@ class Densifier {
   const DensificationTimings& timings() const { return timings_; }
   /// The pixels the output filters removed in the last run.
   const OutputFilterStats& filterStats() const { return filterStats_; }
+  /// The last run's votes on the pair's orientation (empty without a pair or the check).
+  const PairOrientation& pairOrientation() const { return pairOrientation_; }
   MatchMode lastMode() const { return lastMode_; }
   /// The backend that matched (Auto resolved); Auto before the first run.
   Backend usedBackend() const;
@@ -232,6 +240,8 @@ class Densifier {
   bool cropToScan_ = true;
   double minConfidence_ = kDefaultMinConfidence;
   bool computeCloud_ = true;
+  bool pairCheck_ = true;
+  PairOrientation pairOrientation_;
   bool haveCalibration_ = false;  ///< the last run had a calibration (depth and cloud possible)
 };
 
