@@ -15,6 +15,7 @@
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/io/sparse_lidar_check.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 
 namespace fs = std::filesystem;
@@ -135,6 +136,14 @@ int run(int argc, char** argv) {
   if (!sparse.empty() && lidar.empty()) {
     throw std::invalid_argument("the LiDAR image '" + (lidarPath.empty() ? depthPath : lidarPath) +
                                 "' holds no valid point");
+  }
+  if (!sparse.empty()) {
+    // Disparity and depth PNGs share KITTI's format: the values say which one this is.
+    const lidar_sgm::io::SparseLidarCheck check = lidarPath.empty()
+                                                      ? lidar_sgm::io::checkSparseDepth(depthPath, sparse.view())
+                                                      : lidar_sgm::io::checkSparseDisparity(lidarPath, sparse.view(), left.cols);
+    if (!check.error.empty()) throw std::invalid_argument(check.error);
+    for (const std::string& warning : check.warnings) std::fprintf(stderr, "Warning: %s\n", warning.c_str());
   }
 
   // The pipeline every tool runs; this tool stops at the disparity (no calibration, no cloud).

@@ -11,9 +11,11 @@
 #include <fstream>
 #include <string>
 
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/synthetic_stereo.hpp"
+#include "common/test_data.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "common/test_paths.hpp"
 
@@ -149,6 +151,35 @@ TEST_F(DisparityCli, ASwappedPairIsRefusedWithOrWithoutLidarUnlessTheCheckIsOff)
   expectFailure(swapped + " -lidar " + p("sparse.png"), "LiDAR points");
   const RunResult r = runTool(swapped + " -no_pair_check");
   ASSERT_EQ(r.exitCode, 0) << r.output;
+}
+
+TEST_F(DisparityCli, AKittiDepthPngGivenAsDisparitiesIsNamed) {
+  if (!test::haveSharedData("kitti_stereo_sparse_lidar_disparity_sample")) GTEST_SKIP() << "no KITTI sample";
+  const std::string dir = test::sharedDataRoot() + "/kitti_stereo_sparse_lidar_disparity_sample";
+  // The sample's LiDAR disparities as a KITTI depth PNG (metres*256, F = 721.5 px * 0.54 m).
+  const cv::Mat disparity = cv::imread(dir + "/sparse_lidar_disparity.png", cv::IMREAD_UNCHANGED);
+  cv::Mat depth(disparity.size(), CV_16UC1, cv::Scalar(0));
+  for (int y = 0; y < depth.rows; ++y) {
+    for (int x = 0; x < depth.cols; ++x) {
+      const int d = disparity.at<std::uint16_t>(y, x);
+      if (d > 0) depth.at<std::uint16_t>(y, x) = cv::saturate_cast<std::uint16_t>(389.6 / (d / 256.0) * 256.0);
+    }
+  }
+  fs::create_directories(dir_ / "proj_depth");
+  write("proj_depth/0000000005.png", depth);
+  const std::string pair = dir + "/left.png " + dir + "/right.png " + p("out.png");
+  const RunResult right = runTool(pair + " -lidar " + dir + "/sparse_lidar_disparity.png");
+  ASSERT_EQ(right.exitCode, 0) << right.output;
+  EXPECT_EQ(right.output.find("Warning"), std::string::npos) << right.output;
+  const RunResult wrong = runTool(pair + " -lidar " + p("proj_depth/0000000005.png"));
+  EXPECT_NE(wrong.output.find("Warning: '" + p("proj_depth/0000000005.png") + "' is named like a depth map"),
+            std::string::npos)
+      << wrong.output;
+  EXPECT_NE(wrong.output.find("as depths do"), std::string::npos) << wrong.output;
+  // The disparities given as depths: the other way round.
+  const RunResult swapped = runTool(pair + " -lidar_depth " + dir + "/sparse_lidar_disparity.png -fb 389.6");
+  EXPECT_NE(swapped.output.find("named like a disparity map"), std::string::npos) << swapped.output;
+  EXPECT_NE(swapped.output.find("as disparities do"), std::string::npos) << swapped.output;
 }
 
 TEST_F(DisparityCli, FailsLoudlyAndLeavesNoOutput) {
