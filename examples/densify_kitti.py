@@ -5,8 +5,8 @@
     PYTHONPATH=build/python python3 examples/densify_kitti.py --velodyne V.bin --calib C.txt \\
         --left image_2/X.png --right image_3/X.png --out /tmp/frame --alpha 0.7
 
-Without paths it densifies the bundled sample (data/sample). Writes OUT/cloud.ply (x, y, z and
-the left image's colors; through Open3D when it is installed, else by this script) and
+Without paths it densifies the bundled sample (data/sample). Writes OUT/cloud.ply (x, y, z, the
+left image's colors and the confidence, as lidar_sgm_densify writes it: lidar_sgm.write_cloud) and
 OUT/disparity.png (the disparity color-mapped, black = none; matplotlib's turbo when installed).
 """
 import argparse
@@ -20,20 +20,6 @@ import numpy as np
 import lidar_sgm
 
 SAMPLE = pathlib.Path(__file__).resolve().parents[1] / "data" / "sample"
-
-
-def write_ply(path, points, colors):
-    """Binary little-endian PLY: float x, y, z and uchar red, green, blue."""
-    header = ("ply\nformat binary_little_endian 1.0\n"
-              f"element vertex {len(points)}\n"
-              "property float x\nproperty float y\nproperty float z\n"
-              "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n")
-    records = np.empty(len(points), dtype=[("xyz", "<f4", 3), ("rgb", "u1", 3)])
-    records["xyz"] = points
-    records["rgb"] = colors
-    with open(path, "wb") as f:
-        f.write(header.encode("ascii"))
-        f.write(records.tobytes())
 
 
 def write_png(path, rgb):
@@ -83,11 +69,7 @@ def main(argv=None):
 
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    try:
-        import open3d as o3d
-        o3d.io.write_point_cloud(str(out / "cloud.ply"), lidar_sgm.to_open3d(result))
-    except ImportError:
-        write_ply(out / "cloud.ply", result.points, result.colors)
+    lidar_sgm.write_cloud(out / "cloud.ply", result)
     low, count = result.disparity_range
     write_png(out / "disparity.png", color_map(result.disparity, low + count))
     print(f"wrote {out / 'cloud.ply'} and {out / 'disparity.png'}")

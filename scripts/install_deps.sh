@@ -19,6 +19,8 @@ packages=(
   slurm-wlm munge              # the Slurm job array test: its own slurmctld, slurmd and munged
   python3-dev pybind11-dev     # the Python package lidar_sgm (python/)
   python3-numpy python3-pytest # its arrays and its tests
+  python3-venv python3-pip     # pip install . of the package into a virtual environment (tested, offline)
+  python3-setuptools python3-wheel  # ... its build backend (setup.py), without fetching one
   python3-open3d               # lidar_sgm.to_open3d, tested
   python3-matplotlib           # examples/densify_kitti.py's color map
   clang-14 libclang-rt-14-dev  # scripts/test_sanitizers.sh: ASan, UBSan and libFuzzer (-fsanitize=fuzzer)

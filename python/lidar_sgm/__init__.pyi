@@ -1,5 +1,6 @@
 # Type stub of the package lidar_sgm (the compiled _lidar_sgm and to_open3d); parameters and
 # their defaults: help(lidar_sgm.Densifier), or lidar_sgm_densify -h (the same names, without the dash).
+import os
 from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
@@ -47,6 +48,8 @@ class DensifyResult:
     def depth(self) -> npt.NDArray[np.float32]: ...  # (H, W) m, 0 = none
     @property
     def confidence(self) -> Optional[npt.NDArray[np.uint8]]: ...  # (H, W) 0..255, None with no_confidence
+    @property
+    def point_confidence(self) -> Optional[npt.NDArray[np.float32]]: ...  # (M,) in [0, 1], None with no_confidence
     @property
     def timings(self) -> Dict[str, float]: ...  # project, match, reproject, total [ms]
     @property
@@ -98,4 +101,5 @@ def read_kitti_bin(path: str) -> npt.NDArray[np.float32]: ...  # (N, 4)
 def read_cloud(path: str) -> npt.NDArray[np.float32]: ...  # (N, 4)
 def read_image(path: str) -> npt.NDArray[Union[np.uint8, np.uint16]]: ...  # (H, W) or (H, W, 3) RGB
 def backends() -> List[str]: ...
-def to_open3d(result: DensifyResult) -> Any: ...  # open3d.geometry.PointCloud
+def write_cloud(path: Union[str, os.PathLike], result: DensifyResult, format: str = "binary") -> None: ...
+def to_open3d(result: DensifyResult, tensor: bool = False) -> Any: ...  # open3d.geometry.PointCloud, or open3d.t.geometry.PointCloud

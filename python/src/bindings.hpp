@@ -10,6 +10,7 @@ void bindCalibration(pybind11::module_& module);  ///< Calibration, read_calibra
 void bindIo(pybind11::module_& module);           ///< read_kitti_bin, read_cloud, read_image
 void bindDensifier(pybind11::module_& module);    ///< Densifier, DensifyResult
 void bindMatch(pybind11::module_& module);        ///< match
+void bindCloudWriter(pybind11::module_& module);  ///< write_cloud
 
 }  // namespace python
 }  // namespace lidar_sgm

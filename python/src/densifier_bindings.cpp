@@ -11,6 +11,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "densify_result.hpp"
 #include "frame_images.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 #include "options.hpp"
@@ -22,24 +23,14 @@ namespace py = pybind11;
 
 namespace {
 
-/// One frame's outputs: the cloud moved out of the Densifier, the images copied (it reuses their
-/// buffers).
-struct DensifyResult {
-  py::object points;      ///< (M, 3) float32, the output frame (LiDAR by default)
-  py::object colors;      ///< (M, 3) uint8 RGB, None without a left image
-  py::object pixels;      ///< (M, 2) int32: the (x, y) pixel each point came from
-  py::object disparity;   ///< (H, W) float32 [px], NaN where none
-  py::object depth;       ///< (H, W) float32 [m], 0 where none or beyond max_depth
-  py::object confidence;  ///< (H, W) uint8, 255 x P(correct), 0 where none; None with no_confidence
-  py::dict timings;       ///< project, match, reproject, total [ms]
-  py::dict projection;    ///< what happened to the input points
-  std::string mode;       ///< "fused", "lidar-only", "stereo-only"
-  std::string backend;    ///< the backend that matched
-  std::string frame;      ///< "lidar" or "camera"
-  py::tuple disparityRange;  ///< (min_disparity, num_disparities) matched
-  int width = 0;          ///< organized (keep_organized): sampled columns; else the point count
-  int height = 0;         ///< organized: sampled rows; else 1
-};
+/// Each point's confidence in [0, 1] (its pixel's 0..255 / 255, as the tool's `confidence` field)
+/// into an (M,) array's memory.
+void copyPointConfidence(const Image<std::uint8_t>& confidence, const geometry::DenseCloud& cloud, float* out) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const geometry::PixelIndex p = cloud.pixels[i];
+    out[i] = static_cast<float>(confidence(p.x, p.y)) / 255.0f;
+  }
+}
 
 /// The colors of the cloud's points (their pixels in the left image) into an (M, 3) array's memory.
 void copyColors(const Densifier& densifier, const geometry::DenseCloud& cloud, std::uint8_t* colors) {
@@ -80,7 +71,9 @@ DensifyResult resultOf(Densifier& densifier, bool colored) {
   py::array_t<float> depth = newArray<float>(static_cast<std::size_t>(densifier.depth().height()),
                                              static_cast<std::size_t>(densifier.depth().width()));
   py::array_t<std::uint8_t> confidence = newArray<std::uint8_t>(haveConfidence ? height : 0, haveConfidence ? width : 0);
+  py::array_t<float> pointConfidence(static_cast<py::ssize_t>(haveConfidence ? cloud->size() : 0));
   std::uint8_t* colorsOut = colored ? colors.mutable_data() : nullptr;
+  float* pointConfidenceOut = pointConfidence.mutable_data();
   float* disparityOut = disparity.mutable_data();
   float* depthOut = depth.mutable_data();
   std::uint8_t* confidenceOut = confidence.mutable_data();
@@ -90,6 +83,7 @@ DensifyResult resultOf(Densifier& densifier, bool colored) {
     copyDisparity(densifier.disparity(), disparityOut);
     copyImage(densifier.depth(), depthOut);
     if (haveConfidence) copyImage(densifier.confidence(), confidenceOut);
+    if (haveConfidence) copyPointConfidence(densifier.confidence(), *cloud, pointConfidenceOut);
   }
   DensifyResult r;
   r.points = std::move(points);
@@ -98,6 +92,7 @@ DensifyResult resultOf(Densifier& densifier, bool colored) {
   r.disparity = std::move(disparity);
   r.depth = std::move(depth);
   r.confidence = haveConfidence ? py::object(std::move(confidence)) : py::object(py::none());
+  r.pointConfidence = haveConfidence ? py::object(std::move(pointConfidence)) : py::object(py::none());
   const DensificationTimings& t = densifier.timings();
   r.timings["project"] = t.project;
   r.timings["match"] = t.match;
@@ -117,15 +112,28 @@ DensifyResult resultOf(Densifier& densifier, bool colored) {
   r.disparityRange = py::make_tuple(densifier.usedParameters().minDisparity, densifier.usedParameters().numDisparities);
   r.width = cloud->width;
   r.height = cloud->height;
+  r.isDense = cloud->isDense;
   return r;
+}
+
+/// The calibration argument as a Calibration; TypeError otherwise, saying how to get one (a path
+/// is the likely mistake: the tools take one, as -calib).
+const geometry::StereoCalibration& calibrationArgument(const py::object& calibration) {
+  if (py::isinstance<geometry::StereoCalibration>(calibration)) return calibration.cast<const geometry::StereoCalibration&>();
+  const std::string type = py::str(py::type::handle_of(calibration).attr("__name__"));
+  const bool path = py::isinstance<py::str>(calibration) || py::hasattr(calibration, "__fspath__");
+  throw py::type_error("Densifier(calibration): expected a lidar_sgm.Calibration, got " + type +
+                       (path ? " " + std::string(py::repr(calibration)) + "; read the file with lidar_sgm.read_calibration(path)"
+                             : "; read one from a file with lidar_sgm.read_calibration(path), or build one with "
+                               "lidar_sgm.Calibration(K, baseline, T_cam_lidar)"));
 }
 
 class PyDensifier {
  public:
-  PyDensifier(const geometry::StereoCalibration& calibration, const py::kwargs& parameters)
-      : parameters_(parameters) {
+  PyDensifier(const py::object& calibration, const py::kwargs& parameters) : parameters_(parameters) {
+    const geometry::StereoCalibration& checked = calibrationArgument(calibration);
     configure(densifier_, parameters_, OptionSet::Densify);
-    densifier_.setCalibration(calibration);
+    densifier_.setCalibration(checked);
   }
 
   DensifyResult densify(const py::object& points, const py::object& left, const py::object& right) {
@@ -164,6 +172,9 @@ void bindDensifier(py::module_& m) {
                     "pixels without a point when keep_organized")
       .def_readonly("colors", &DensifyResult::colors, "(M, 3) uint8 RGB from the left image; None without one")
       .def_readonly("pixels", &DensifyResult::pixels, "(M, 2) int32: the (x, y) pixel of each point")
+      .def_readonly("point_confidence", &DensifyResult::pointConfidence,
+                    "(M,) float32 in [0, 1], aligned with points: each point's confidence (its pixel's\n"
+                    "confidence / 255), the `confidence` field of lidar_sgm_densify's cloud; None with no_confidence")
       .def_readonly("disparity", &DensifyResult::disparity, "(H, W) float32 disparity [px], NaN where there is none")
       .def_readonly("depth", &DensifyResult::depth,
                     "(H, W) float32 depth z [m] in the left camera (Eq. 3), 0 where none or beyond max_depth")
@@ -188,10 +199,12 @@ void bindDensifier(py::module_& m) {
       "Densifier(calibration, **parameters)\n\n"
       "One frame of LiDAR-SGM, end to end (project the scan, match, filter, reproject): the pipeline and\n"
       "the defaults of lidar_sgm_densify. Keeps its buffers between frames; one frame at a time (calls\n"
-      "from several threads wait for each other). ValueError for an unknown or invalid parameter.\n\n" +
+      "from several threads wait for each other). calibration: a Calibration (lidar_sgm.read_calibration(path)\n"
+      "reads the tools' -calib files; TypeError for anything else). ValueError for an unknown or invalid\n"
+      "parameter.\n\n" +
       parametersHelp(OptionSet::Densify);
   py::class_<PyDensifier>(m, "Densifier", doc.c_str())
-      .def(py::init<const geometry::StereoCalibration&, const py::kwargs&>(), py::arg("calibration"))
+      .def(py::init<const py::object&, const py::kwargs&>(), py::arg("calibration"))
       .def("densify", &PyDensifier::densify, py::arg("points"), py::arg("left") = py::none(),
            py::arg("right") = py::none(),
            "densify(points, left=None, right=None) -> DensifyResult\n\n"

@@ -1,6 +1,6 @@
 #pragma once
-// The library's errors as Python exceptions: std::invalid_argument -> ValueError (pybind11's
-// own translation), a file that cannot be read -> OSError, each with the C++ message.
+// The library's errors as Python exceptions: std::invalid_argument -> ValueError, a file that
+// cannot be read -> OSError, each with the C++ message (bytes that are not UTF-8 as \xNN escapes).
 
 #include <stdexcept>
 #include <string>

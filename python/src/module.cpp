@@ -16,6 +16,7 @@ PYBIND11_MODULE(_lidar_sgm, m) {
   lidar_sgm::python::bindIo(m);
   lidar_sgm::python::bindDensifier(m);
   lidar_sgm::python::bindMatch(m);
+  lidar_sgm::python::bindCloudWriter(m);
   m.def(
       "backends",
       [] {

@@ -90,8 +90,17 @@ class KittiText {
  public:
   KittiText(std::istream& in, const std::string& source) : source_(source) {
     std::string text;
-    for (int number = 1; std::getline(in, text); ++number) addLine(number, text);
+    for (int number = 1; std::getline(in, text); ++number) {
+      // A binary file given as the calibration (a scan, an image) is named as such, wherever its
+      // first NUL byte is, rather than by its first line, and its bytes are kept out of the message.
+      if (text.find('\0') != std::string::npos) {
+        throw std::runtime_error(source_ + ":" + std::to_string(number) +
+                                 ": binary data (a NUL byte), not a calibration text of 'KEY: values' lines");
+      }
+      if (malformed_.empty()) addLine(number, text);
+    }
     if (in.bad()) cannotRead(source, "read error");
+    if (!malformed_.empty()) throw std::runtime_error(malformed_);
   }
 
   /// The numbers of `key`, exactly `count` of them.
@@ -121,13 +130,15 @@ class KittiText {
     if (trim(text).empty()) return;
     const std::size_t colon = text.find(':');
     if (colon == std::string::npos) {
-      throw std::runtime_error(source_ + ":" + std::to_string(number) + ": expected 'KEY: values', got '" + text + "'");
+      malformed_ = source_ + ":" + std::to_string(number) + ": expected 'KEY: values', got '" + text + "'";
+      return;
     }
     lines_[trim(text.substr(0, colon))].push_back({number, text.substr(colon + 1)});
   }
 
   std::string source_;
   std::map<std::string, std::vector<Line>> lines_;
+  std::string malformed_;  ///< the message for the first line that is no "KEY: values", if any
 };
 
 Matrix34 rowMajor3x4(const Field& field) {
