@@ -128,7 +128,8 @@ std::vector<Eigen::Isometry3d> oxtsPosesOfDrive(const std::vector<Frame>& frames
   const fs::path dateFolder = fs::is_directory(calib, ec) ? calib : calib.parent_path();
   Eigen::Isometry3d cameraFromImu;
   try {
-    const Eigen::Isometry3d lidarFromImu = io::readKittiRawRigidTransform((dateFolder / "calib_imu_to_velo.txt").string());
+    const Eigen::Isometry3d lidarFromImu =
+        io::readKittiRawRigidTransform((dateFolder / "calib_imu_to_velo.txt").string());
     cameraFromImu = readFrameCalibration(frames.front()).T_cam_lidar * lidarFromImu;
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(std::string("the OXTS poses need the drive's calibration: ") + e.what());

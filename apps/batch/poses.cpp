@@ -98,7 +98,8 @@ SequencePoses posesOfSequence(const std::vector<Frame>& frames, const std::strin
                                             " (KITTI raw: the IMU's poses taken to the left camera)"};
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string(e.what()) +
-                                  " (-map takes a KITTI raw drive's poses from oxts/data/ unless -poses FILE is given)");
+                                  " (-map takes a KITTI raw drive's poses from oxts/data/ unless -poses FILE "
+                                  "is given)");
     }
   }
   if (path.empty()) {
@@ -106,7 +107,8 @@ SequencePoses posesOfSequence(const std::vector<Frame>& frames, const std::strin
         "-map needs the frames' poses: give -poses FILE (KITTI odometry format), or a KITTI odometry sequence "
         "with NN/poses.txt or the dataset's poses/NN.txt, or a KITTI raw drive with oxts/data/");
   }
-  SequencePoses result{readPoses(path), "poses file " + path + (posesPath.empty() ? " (found beside the sequence)" : " (-poses)")};
+  SequencePoses result{readPoses(path),
+                       "poses file " + path + (posesPath.empty() ? " (found beside the sequence)" : " (-poses)")};
   if (result.poses.size() != frames.size()) {
     throw std::invalid_argument("the poses file '" + path + "' has " + std::to_string(result.poses.size()) +
                                 " poses but the sequence has " + std::to_string(frames.size()) +
