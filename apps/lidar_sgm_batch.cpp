@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <set>
 #include <thread>
@@ -151,12 +152,18 @@ int run(int argc, char** argv) {
   int height = 0;
   if (args.has("image_size")) lidar_sgm::apps::parseImageSize(args.text("image_size", ""), width, height);
 
-  const std::vector<Frame> all = args.has("list") ? lidar_sgm::apps::framesFromList(args.text("list", ""))
-                                                  : lidar_sgm::apps::framesFromDirectory(args.text("input_dir", ""));
+  const std::string inputPath = args.has("list") ? args.text("list", "") : args.text("input_dir", "");
+  const std::vector<Frame> all = args.has("list") ? lidar_sgm::apps::framesFromList(inputPath)
+                                                  : lidar_sgm::apps::framesFromDirectory(inputPath);
+  const lidar_sgm::apps::Layout layout =
+      args.has("list") ? lidar_sgm::apps::Layout::ListFile : lidar_sgm::apps::directoryLayout(inputPath);
+  std::printf("Input %s: %s, %zu frame(s)\n", inputPath.c_str(), lidar_sgm::apps::layoutName(layout), all.size());
+  std::fflush(stdout);
   const std::vector<Frame> frames = lidar_sgm::apps::framesOfShard(all, shard);
   std::optional<lidar_sgm::apps::SequenceMap> map;
   if (!mapOptions.mapPath.empty()) {
     map.emplace(mapOptions, all, lidar_sgm::apps::outputOptionsFrom(args).frame, width, height);
+    std::printf("Poses: %s\n", map->posesSource().c_str());
   }
   fs::create_directories(outDir);
   // The options that make a cloud's bytes: the method's and the output's, not how the run is
@@ -173,6 +180,9 @@ int run(int argc, char** argv) {
   const std::string manifestName =
       shard.count == 1 ? "manifest.jsonl"
                        : "manifest.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".jsonl";
+  // What earlier runs recorded of the frames this one will skip, before its manifest is replaced.
+  const std::map<std::string, FrameRecord> earlierRecords =
+      args.has("overwrite") ? std::map<std::string, FrameRecord>{} : lidar_sgm::apps::earlierFrameRecords(outDir);
   lidar_sgm::apps::Manifest manifest((fs::path(outDir) / manifestName).string());
   std::printf("%zu frame(s)", frames.size());
   if (shard.count > 1) std::printf(" (shard %d/%d of %zu)", shard.index, shard.count, all.size());
@@ -198,9 +208,7 @@ int run(int argc, char** argv) {
     const std::string& outPath = outPaths[index];
     try {
       if (!overwrite && fs::exists(outPath)) {
-        record.status = "skipped";
-        record.bytes = fs::file_size(outPath);
-        return record;
+        return lidar_sgm::apps::skippedFrameRecord(frame.name, fs::file_size(outPath), earlierRecords);
       }
       for (const std::string& input : {frame.scan, frame.left, frame.right, frame.calib}) {
         if (!input.empty() && lidar_sgm::apps::samePath(outPath, input)) {

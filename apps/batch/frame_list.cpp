@@ -84,23 +84,58 @@ std::vector<Frame> odometrySequences(const fs::path& sequences) {
   return frames;
 }
 
+bool isRawDrive(const fs::path& dir) { return isDirectory(dir / "velodyne_points" / "data"); }
+
+bool isObjectLayout(const fs::path& dir) { return isDirectory(dir / "velodyne") && isDirectory(dir / "calib"); }
+
+std::vector<Frame> rawDrive(const fs::path& dir) {
+  // The drive's calibration is the date folder's (calib_cam_to_cam.txt, calib_velo_to_cam.txt).
+  const std::string calib = fs::absolute(dir).lexically_normal().parent_path().string();
+  std::vector<Frame> frames = framesOf(dir / "velodyne_points" / "data", dir / "image_02" / "data",
+                                       dir / "image_03" / "data", "", CalibrationFormat::Auto,
+                                       [&](const std::string&) { return calib; });
+  for (Frame& frame : frames) {
+    frame.oxts = (dir / "oxts" / "data" / (fs::path(frame.scan).stem().string() + ".txt")).string();
+  }
+  return frames;
+}
+
 std::vector<Frame> framesOfLayout(const fs::path& dir) {
-  if (isOdometrySequence(dir)) return odometrySequence(dir, "");
-  if (isDirectory(dir / "velodyne_points" / "data")) {
-    // The drive's calibration is the date folder's (calib_cam_to_cam.txt, calib_velo_to_cam.txt).
-    const std::string calib = fs::absolute(dir).lexically_normal().parent_path().string();
-    return framesOf(dir / "velodyne_points" / "data", dir / "image_02" / "data", dir / "image_03" / "data", "",
-                    CalibrationFormat::Auto, [&](const std::string&) { return calib; });
+  switch (directoryLayout(dir.string())) {
+    case Layout::KittiOdometrySequence:
+      return odometrySequence(dir, "");
+    case Layout::KittiRawDrive:
+      return rawDrive(dir);
+    case Layout::KittiObject:
+      return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", "", CalibrationFormat::Auto,
+                      [&](const std::string& stem) { return (dir / "calib" / (stem + ".txt")).string(); });
+    case Layout::KittiOdometryRoot:
+    case Layout::ListFile:
+      break;
   }
-  if (isDirectory(dir / "velodyne") && isDirectory(dir / "calib")) {
-    return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", "", CalibrationFormat::Auto,
-                    [&](const std::string& stem) { return (dir / "calib" / (stem + ".txt")).string(); });
-  }
-  const fs::path sequences = isDirectory(dir / "sequences") ? dir / "sequences" : dir;
-  return odometrySequences(sequences);
+  return odometrySequences(isDirectory(dir / "sequences") ? dir / "sequences" : dir);
 }
 
 }  // namespace
+
+const char* layoutName(Layout layout) {
+  switch (layout) {
+    case Layout::KittiOdometrySequence: return "KITTI odometry sequence";
+    case Layout::KittiOdometryRoot: return "KITTI odometry root";
+    case Layout::KittiRawDrive: return "KITTI raw drive";
+    case Layout::KittiObject: return "KITTI object layout";
+    case Layout::ListFile: return "list file";
+  }
+  return "unknown layout";
+}
+
+Layout directoryLayout(const std::string& dir) {
+  const fs::path path(dir);
+  if (isOdometrySequence(path)) return Layout::KittiOdometrySequence;
+  if (isRawDrive(path)) return Layout::KittiRawDrive;
+  if (isObjectLayout(path)) return Layout::KittiObject;
+  return Layout::KittiOdometryRoot;
+}
 
 std::vector<Frame> framesFromDirectory(const std::string& dir) {
   if (!isDirectory(dir)) throw std::invalid_argument("-input_dir '" + dir + "' is not a folder");

@@ -25,14 +25,32 @@ struct Frame {
   std::string right;
   std::string calib;
   CalibrationFormat calibFormat = CalibrationFormat::Auto;
+  std::string oxts;  ///< a KITTI raw drive's OXTS packet of the frame (oxts/data/<stem>.txt), present or not; else ""
 };
+
+/// The layouts framesFromDirectory() reads, and the list file.
+enum class Layout {
+  KittiOdometrySequence,  ///< NN/{velodyne,image_2,image_3}/, NN/calib.txt
+  KittiOdometryRoot,      ///< sequences/NN/...: every sequence
+  KittiRawDrive,          ///< {velodyne_points,image_02,image_03}/data/, oxts/data/
+  KittiObject,            ///< velodyne/, image_2/, image_3/, calib/NNNNNN.txt
+  ListFile                ///< -list FILE
+};
+
+/// The layout's name for messages ("KITTI raw drive").
+const char* layoutName(Layout layout);
+
+/// The layout framesFromDirectory() reads `dir` as (KittiOdometryRoot when it is none of the
+/// others: framesFromDirectory() then refuses a folder without sequences).
+Layout directoryLayout(const std::string& dir);
 
 /// The frames under `dir`, in name order, by its layout:
 ///  - KITTI odometry sequence `NN/{velodyne,image_2,image_3,calib.txt}`; names "000000";
 ///  - KITTI odometry root `sequences/NN/...` (or the `sequences` folder itself), every sequence;
 ///    names "NN/000000";
 ///  - KITTI raw drive `{velodyne_points,image_02,image_03}/data`, calibration in the folder above
-///    (the date's calib_cam_to_cam.txt, calib_velo_to_cam.txt); names "0000000000";
+///    (the date's calib_cam_to_cam.txt, calib_velo_to_cam.txt); names "0000000000"; each frame's
+///    OXTS packet `oxts/data/<stem>.txt` (its pose, for -map);
 ///  - KITTI object `{velodyne,image_2,image_3,calib}` with calib/NNNNNN.txt per frame.
 /// A scan is any .bin, .pcd or .ply file of the scan folder; its images are the .png of the same
 /// stem, when present. Throws std::invalid_argument naming `dir` and the layouts it looked for

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 namespace lidar_sgm {
@@ -37,6 +38,10 @@ std::string jsonEscape(const std::string& text);
 /// {"frame":..,"status":..,"points":..,"bytes":..,"load_ms":..,"project_ms":..,"match_ms":..,
 ///  "reproject_ms":..,"save_ms":..,"total_ms":..,"error":..}
 std::string toJsonLine(const FrameRecord& record);
+
+/// The record of a line toJsonLine() wrote (total_ms, the sum, is not kept); std::nullopt for
+/// any other line (another program's, a line cut short by a killed run).
+std::optional<FrameRecord> fromJsonLine(const std::string& line);
 
 /// A manifest file, created empty (a re-run writes its own, listing the frames it skipped).
 class Manifest {

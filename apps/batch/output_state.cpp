@@ -1,5 +1,6 @@
 #include "batch/output_state.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <regex>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include "common/output_paths.hpp"
 
@@ -97,6 +99,44 @@ std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs) {
     }
   }
   return removed;
+}
+
+std::map<std::string, FrameRecord> earlierFrameRecords(const std::string& outDir) {
+  static const std::regex manifestName(R"(manifest(\.shard-[0-9]+-of-[0-9]+)?\.jsonl)");
+  std::vector<std::pair<fs::file_time_type, fs::path>> manifests;
+  std::error_code ec;
+  for (fs::directory_iterator it(outDir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!std::regex_match(it->path().filename().string(), manifestName)) continue;
+    std::error_code timeError;
+    const fs::file_time_type written = fs::last_write_time(it->path(), timeError);
+    if (!timeError) manifests.emplace_back(written, it->path());
+  }
+  std::sort(manifests.begin(), manifests.end());  // oldest first: later records replace earlier ones
+  std::map<std::string, FrameRecord> records;
+  for (const auto& manifest : manifests) {
+    std::ifstream in(manifest.second);
+    for (std::string line; std::getline(in, line);) {
+      const std::optional<FrameRecord> record = fromJsonLine(line);
+      if (!record) continue;
+      const bool carriesStatistics = record->points > 0 || record->ms.total() > 0.0;
+      if (record->status == "ok" || (record->status == "skipped" && carriesStatistics)) {
+        records[record->frame] = *record;
+      }
+    }
+  }
+  return records;
+}
+
+FrameRecord skippedFrameRecord(const std::string& frame, std::uintmax_t bytes,
+                               const std::map<std::string, FrameRecord>& earlier) {
+  FrameRecord record;
+  const auto found = earlier.find(frame);
+  if (found != earlier.end() && found->second.bytes == bytes) record = found->second;
+  record.frame = frame;
+  record.status = "skipped";
+  record.bytes = bytes;
+  record.error.clear();
+  return record;
 }
 
 }  // namespace apps

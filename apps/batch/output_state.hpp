@@ -1,12 +1,16 @@
 #pragma once
 // What an output folder holds from earlier runs: the options its clouds were made with (so that a
-// re-run never skips frames made with other options and mixes two methods in one sequence), and
-// the hidden temporary files a killed run (kill -9, a node lost) may have left.
+// re-run never skips frames made with other options and mixes two methods in one sequence), the
+// hidden temporary files a killed run (kill -9, a node lost) may have left, and the manifests'
+// records of the frames made.
 
+#include <cstdint>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "batch/manifest.hpp"
 #include "common/arguments.hpp"
 
 namespace lidar_sgm {
@@ -32,6 +36,19 @@ void checkAndRecordCloudOptions(const std::string& outDir, const std::string& op
 /// beside the clouds `outputs` (this shard's frames: no other process writes them, so no other
 /// process's file is touched). Returns how many were removed.
 std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs);
+
+/// What the manifests in `outDir` (manifest.jsonl and the shards' manifest.shard-K-of-N.jsonl)
+/// say of the frames whose clouds earlier runs made, by frame name: their "ok" records, and
+/// "skipped" ones that carry such a record's statistics. Where several manifests have a frame,
+/// the last written (file time) wins. Read before this run's manifest replaces its own;
+/// unreadable files and lines are passed over (they are statistics, not state).
+std::map<std::string, FrameRecord> earlierFrameRecords(const std::string& outDir);
+
+/// The record of frame `frame`, skipped because its cloud of `bytes` exists: status "skipped",
+/// with the points and timings of the run that made the cloud when `earlier` has a record of it
+/// of the same size (else 0: a cloud made or replaced by other means has no statistics here).
+FrameRecord skippedFrameRecord(const std::string& frame, std::uintmax_t bytes,
+                               const std::map<std::string, FrameRecord>& earlier);
 
 }  // namespace apps
 }  // namespace lidar_sgm

@@ -1,13 +1,15 @@
 #include "batch/poses.hpp"
 
-#include <cerrno>
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "batch/number_line.hpp"
+#include "batch/oxts_poses.hpp"
 
 namespace fs = std::filesystem;
 
@@ -15,20 +17,9 @@ namespace lidar_sgm {
 namespace apps {
 namespace {
 
-/// The numbers of one line; `where` names the file and line in errors.
+/// The 12 numbers of one line; `where` names the file and line in errors.
 std::vector<double> numbersOf(const std::string& line, const std::string& where) {
-  std::istringstream fields(line);
-  std::vector<double> numbers;
-  for (std::string field; fields >> field;) {
-    errno = 0;
-    char* end = nullptr;
-    const double value = std::strtod(field.c_str(), &end);
-    if (end == field.c_str() || *end != '\0') throw std::invalid_argument(where + ": '" + field + "' is not a number");
-    if (!std::isfinite(value) || errno == ERANGE) {
-      throw std::invalid_argument(where + ": '" + field + "' is not a finite number");
-    }
-    numbers.push_back(value);
-  }
+  const std::vector<double> numbers = numbersOfLine(line, where);
   if (numbers.size() != 12) {
     throw std::invalid_argument(where + ": expected 12 numbers (a row-major 3x4 pose), got " +
                                 std::to_string(numbers.size()));
@@ -96,21 +87,34 @@ std::string findPosesFile(const std::vector<Frame>& frames) {
   return isFile(dataset) ? dataset.string() : "";
 }
 
-std::vector<Eigen::Isometry3d> posesOfSequence(const std::vector<Frame>& frames, const std::string& posesPath) {
+SequencePoses posesOfSequence(const std::vector<Frame>& frames, const std::string& posesPath) {
   const std::string found = findPosesFile(frames);  // also refuses frames of several sequences
   const std::string path = posesPath.empty() ? found : posesPath;
+  const bool rawDrive = !frames.empty() && std::all_of(frames.begin(), frames.end(),
+                                                       [](const Frame& frame) { return !frame.oxts.empty(); });
+  if (path.empty() && rawDrive) {
+    try {
+      return {oxtsPosesOfDrive(frames), "OXTS packets " + oxtsFolderOf(frames) +
+                                            " (KITTI raw: the IMU's poses taken to the left camera)"};
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string(e.what()) +
+                                  " (-map takes a KITTI raw drive's poses from oxts/data/ unless -poses FILE "
+                                  "is given)");
+    }
+  }
   if (path.empty()) {
     throw std::invalid_argument(
         "-map needs the frames' poses: give -poses FILE (KITTI odometry format), or a KITTI odometry sequence "
-        "with NN/poses.txt or the dataset's poses/NN.txt");
+        "with NN/poses.txt or the dataset's poses/NN.txt, or a KITTI raw drive with oxts/data/");
   }
-  std::vector<Eigen::Isometry3d> poses = readPoses(path);
-  if (poses.size() != frames.size()) {
-    throw std::invalid_argument("the poses file '" + path + "' has " + std::to_string(poses.size()) +
+  SequencePoses result{readPoses(path),
+                       "poses file " + path + (posesPath.empty() ? " (found beside the sequence)" : " (-poses)")};
+  if (result.poses.size() != frames.size()) {
+    throw std::invalid_argument("the poses file '" + path + "' has " + std::to_string(result.poses.size()) +
                                 " poses but the sequence has " + std::to_string(frames.size()) +
                                 " frames: frame i takes line i");
   }
-  return poses;
+  return result;
 }
 
 }  // namespace apps

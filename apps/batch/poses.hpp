@@ -29,10 +29,17 @@ std::vector<Eigen::Isometry3d> readPoses(const std::string& path);
 /// map is of one drive).
 std::string findPosesFile(const std::vector<Frame>& frames);
 
+/// A sequence's poses and where they came from.
+struct SequencePoses {
+  std::vector<Eigen::Isometry3d> poses;  ///< frame i's is poses[i]
+  std::string source;                    ///< for the log: "poses file X (-poses)", "OXTS packets of ..."
+};
+
 /// The poses of `frames`, frame i getting pose i: `posesPath` when given (-poses), else
-/// findPosesFile(). Throws std::invalid_argument when there is no poses file or its count is
-/// not the frame count, naming the file.
-std::vector<Eigen::Isometry3d> posesOfSequence(const std::vector<Frame>& frames, const std::string& posesPath);
+/// findPosesFile(), else for a KITTI raw drive (frames with Frame::oxts) its OXTS packets
+/// (oxtsPosesOfDrive). Throws std::invalid_argument when there is none of them or the poses
+/// file's count is not the frame count, naming the file, and for a missing or bad OXTS packet.
+SequencePoses posesOfSequence(const std::vector<Frame>& frames, const std::string& posesPath);
 
 }  // namespace apps
 }  // namespace lidar_sgm

@@ -48,7 +48,8 @@ std::string mapOptionsHelp() {
          "  -map_picture FILE.png    the map seen from above, with the trajectory (default: OUT.png)\n"
          "  -poses FILE              the frames' poses, KITTI odometry format (a line per frame: row-major\n"
          "                           3x4 camera-to-world); default for a KITTI odometry sequence NN:\n"
-         "                           NN/poses.txt, else the dataset's poses/NN.txt\n";
+         "                           NN/poses.txt, else the dataset's poses/NN.txt; for a KITTI raw drive:\n"
+         "                           its OXTS packets oxts/data/*.txt (with the date's calib_imu_to_velo.txt)\n";
 }
 
 MapOptions mapOptionsFrom(const Arguments& args, const Shard& shard) {
@@ -87,11 +88,13 @@ SequenceMap::SequenceMap(const MapOptions& options, const std::vector<Frame>& fr
                          geometry::OutputFrame cloudFrame, int width, int height)
     : options_(options),
       frames_(frames),
-      poses_(posesOfSequence(frames, options.posesPath)),
       cloudPaths_(frames.size()),
       cloudFrame_(cloudFrame),
       width_(width),
       height_(height) {
+  SequencePoses poses = posesOfSequence(frames, options.posesPath);
+  poses_ = std::move(poses.poses);
+  posesSource_ = std::move(poses.source);
   for (std::size_t i = 0; i < frames_.size(); ++i) indexOf_.emplace(frames_[i].name, i);
 }
 

@@ -46,8 +46,8 @@ class SequenceMap {
  public:
   /// `frames`: the whole sequence, frame i taking pose i; `cloudFrame`: -frame; `width`,
   /// `height`: -image_size (0: from the calibration). Reads the poses now: throws
-  /// std::invalid_argument for missing poses, a bad poses file, a count other than the frame
-  /// count, or frames of several odometry sequences.
+  /// std::invalid_argument for missing poses, a bad poses file or OXTS packet, a count other than
+  /// the frame count, or frames of several odometry sequences.
   SequenceMap(const MapOptions& options, const std::vector<Frame>& frames, geometry::OutputFrame cloudFrame,
               int width, int height);
 
@@ -59,10 +59,14 @@ class SequenceMap {
   /// errors on stderr. Never throws: an error is in the result.
   MapResult build() const;
 
+  /// Where the poses came from, for the log.
+  const std::string& posesSource() const { return posesSource_; }
+
  private:
   MapOptions options_;
   std::vector<Frame> frames_;
   std::vector<Eigen::Isometry3d> poses_;
+  std::string posesSource_;
   std::vector<std::string> cloudPaths_;  ///< per frame; empty until announced
   std::unordered_map<std::string, std::size_t> indexOf_;  ///< frame name -> position in frames_
   geometry::OutputFrame cloudFrame_;

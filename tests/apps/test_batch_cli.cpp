@@ -230,18 +230,45 @@ TEST_F(BatchTool, ShardsAndThreadCountsGiveTheSameBytesAsOneProcess) {
   }
 }
 
+/// A manifest line's statistics: the line without its status and total_ms (the sum, which a
+/// record read back from its rounded parts may print a tenth apart).
+std::string statisticsOf(std::string line) {
+  for (const char* status : {"\"status\":\"ok\",", "\"status\":\"skipped\","}) {
+    const std::size_t at = line.find(status);
+    if (at != std::string::npos) line.erase(at, std::string(status).size());
+  }
+  const std::size_t total = line.find(",\"total_ms\":");
+  if (total != std::string::npos) line.erase(total, line.find(',', total + 1) - total);
+  return line;
+}
+
 TEST_F(BatchTool, ReRunSkipsCompleteFramesAndOverwriteRedoesThem) {
   const fs::path out = root_ / "out";
   const std::string line = "-input_dir " + synth_.string() + " -output_dir " + out.string();
-  ASSERT_EQ(batch(line).exitCode, 0);
+  RunResult r = batch(line);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // The layout and the frame count come first, before any frame.
+  const std::size_t input = r.output.find("Input " + synth_.string() + ": KITTI object layout, 4 frame(s)\n");
+  EXPECT_NE(input, std::string::npos) << r.output;
+  EXPECT_LT(input, r.output.find("000000 ok")) << r.output;
   const std::map<std::string, std::string> first = clouds(out);
   const fs::file_time_type written = fs::last_write_time(out / "000002.pcd");
+  const std::vector<std::string> made = lines(out / "manifest.jsonl");
+  ASSERT_EQ(made.size(), static_cast<std::size_t>(kFrames));
 
-  RunResult r = batch(line);
+  // Skipped frames keep the statistics of the run that made their clouds (points, bytes, timings).
+  r = batch(line);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("0 ok, 4 skipped, 0 failed"), std::string::npos) << r.output;
   EXPECT_EQ(fs::last_write_time(out / "000002.pcd"), written);
-  for (const std::string& m : lines(out / "manifest.jsonl")) EXPECT_NE(m.find("\"status\":\"skipped\""), std::string::npos);
+  std::vector<std::string> manifest = lines(out / "manifest.jsonl");
+  ASSERT_EQ(manifest.size(), static_cast<std::size_t>(kFrames));
+  for (int i = 0; i < kFrames; ++i) {
+    const std::string& m = manifest[static_cast<std::size_t>(i)];
+    EXPECT_NE(m.find("\"status\":\"skipped\""), std::string::npos) << m;
+    EXPECT_EQ(m.find("\"points\":0,"), std::string::npos) << m;
+    EXPECT_EQ(statisticsOf(m), statisticsOf(made[static_cast<std::size_t>(i)]));
+  }
 
   fs::remove(out / "000001.pcd");
   r = batch(line);
@@ -249,6 +276,13 @@ TEST_F(BatchTool, ReRunSkipsCompleteFramesAndOverwriteRedoesThem) {
   EXPECT_NE(r.output.find("000001 ok"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("1 ok, 3 skipped, 0 failed"), std::string::npos) << r.output;
   EXPECT_TRUE(clouds(out) == first);
+  manifest = lines(out / "manifest.jsonl");
+  ASSERT_EQ(manifest.size(), static_cast<std::size_t>(kFrames));
+  EXPECT_NE(manifest[1].find("\"status\":\"ok\""), std::string::npos) << manifest[1];
+  for (int i : {0, 2, 3}) {
+    EXPECT_EQ(statisticsOf(manifest[static_cast<std::size_t>(i)]), statisticsOf(made[static_cast<std::size_t>(i)]))
+        << "carried over twice";
+  }
 
   r = batch(line + " -overwrite");
   ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -1,22 +1,28 @@
 // lidar_sgm_batch -map as a user runs it, on a tiny sequence rendered by lidar_sgm_synth with
-// hand-written poses: the map and its picture, their poses found or given, re-runs that only
-// build the map, and the refusals.
+// hand-written poses: the map and its picture, their poses found or given (a KITTI raw drive's
+// from its OXTS packets), re-runs that only build the map, and the refusals.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_cloud.h>
 
+#include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/pcl/point_types.hpp"
 #include "common/test_paths.hpp"
 
@@ -62,6 +68,39 @@ constexpr int kFrames = 3;
 std::string forwardPoses(double step, int frames = kFrames) {
   std::string text;
   for (int i = 0; i < frames; ++i) text += "1 0 0 0 0 1 0 0 0 0 1 " + std::to_string(step * i) + "\n";
+  return text;
+}
+
+/// The number of points of a map.
+std::size_t sizeOf(const fs::path& map) {
+  pcl::PCLPointCloud2 cloud;
+  EXPECT_EQ(pcl::io::loadPCDFile(map.string(), cloud), 0) << map;
+  return static_cast<std::size_t>(cloud.width) * cloud.height;
+}
+
+/// The value of `key` in a KITTI calibration text ("KEY: values").
+std::string valueOf(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find("\n" + key + ":");
+  EXPECT_NE(at, std::string::npos) << key;
+  const std::size_t begin = at + key.size() + 2;
+  return text.substr(begin, text.find('\n', begin) - begin);
+}
+
+/// An OXTS packet line of the IMU pose `imu` in the world of a drive whose first packet is at
+/// latitude `lat0`, longitude `lon0`, altitude `alt0` (the east-north-up metres of the KITTI raw
+/// devkit's Mercator projection inverted; roll, pitch, yaw from the rotation Rz * Ry * Rx).
+std::string packetOf(const Eigen::Isometry3d& imu, double lat0, double lon0, double alt0) {
+  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kEarthRadius = 6378137.0;
+  const double sr = std::cos(lat0 * kPi / 180.0) * kEarthRadius;
+  const double x = sr * lon0 * kPi / 180.0 + imu.translation().x();
+  const double y = sr * std::log(std::tan((90.0 + lat0) * kPi / 360.0)) + imu.translation().y();
+  const Eigen::Vector3d yawPitchRoll = imu.linear().eulerAngles(2, 1, 0);
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "%.17g %.17g %.17g %.17g %.17g %.17g 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0.5 0.05 4 10 4 4 6\n",
+                std::atan(std::exp(y / sr)) * 360.0 / kPi - 90.0, x / sr * 180.0 / kPi, alt0 + imu.translation().z(),
+                yawPitchRoll[2], yawPitchRoll[1], yawPitchRoll[0]);
   return text;
 }
 
@@ -214,6 +253,88 @@ TEST_F(BatchMap, AListFileTakesItsPosesFromPoses) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("2/2 frames, voxel 0.50 m"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(root_ / "top.png"));
+}
+
+TEST_F(BatchMap, AKittiRawDriveTakesItsPosesFromItsOxtsPackets) {
+  // The synthetic frames as a KITTI raw drive: the date folder's calibration made of the object
+  // calibration, an IMU behind and below the LiDAR, and OXTS packets of a vehicle heading north-east
+  // whose left camera moves as forwardPoses(2.0) says.
+  const fs::path object = synth_ / "object";
+  const fs::path date = root_ / "2011_09_26";
+  const fs::path drive = date / "2011_09_26_drive_0001_sync";
+  for (const auto& [from, to] : {std::pair<const char*, const char*>{"velodyne", "velodyne_points"},
+                                 {"image_2", "image_02"},
+                                 {"image_3", "image_03"}}) {
+    fs::create_directories(drive / to / "data");
+    for (const fs::directory_entry& e : fs::directory_iterator(object / from)) {
+      fs::copy_file(e.path(), drive / to / "data" / ("0000" + e.path().filename().string()));
+    }
+  }
+  const std::string calib = "\n" + readText(object / "calib" / "000000.txt");
+  std::istringstream tr(valueOf(calib, "Tr_velo_to_cam"));
+  std::vector<double> t(12);
+  for (double& v : t) tr >> v;
+  std::ofstream(date / "calib_cam_to_cam.txt") << "calib_time: 09-Jan-2012 13:57:47\nP_rect_02:" << valueOf(calib, "P2")
+                                                << "\nP_rect_03:" << valueOf(calib, "P3")
+                                                << "\nR_rect_00:" << valueOf(calib, "R0_rect")
+                                                << "\nS_rect_02: 3.200000e+02 9.600000e+01\n";
+  std::ofstream veloToCam(date / "calib_velo_to_cam.txt");
+  veloToCam.precision(17);
+  veloToCam << "R: " << t[0] << " " << t[1] << " " << t[2] << " " << t[4] << " "
+            << t[5] << " " << t[6] << " " << t[8] << " " << t[9] << " " << t[10] << "\nT: " << t[3] << " " << t[7]
+            << " " << t[11] << "\n";
+  veloToCam.close();
+  Eigen::Isometry3d lidarFromImu = Eigen::Isometry3d::Identity();
+  lidarFromImu.linear() = Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  lidarFromImu.translation() = Eigen::Vector3d(-0.81, 0.32, -0.8);
+  char imuToVelo[256];
+  const Eigen::Matrix3d& R = lidarFromImu.linear();
+  std::snprintf(imuToVelo, sizeof(imuToVelo), "R: %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\nT: -0.81 0.32 -0.8\n",
+                R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2));
+  std::ofstream(date / "calib_imu_to_velo.txt") << imuToVelo;
+  const Eigen::Isometry3d cameraFromImu = io::readCalibration(date.string()).T_cam_lidar * lidarFromImu;
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();  // heading 0.7 rad north of east, pitched
+  start.linear() = (Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()))
+                       .toRotationMatrix();
+  fs::create_directories(drive / "oxts" / "data");
+  for (int i = 0; i < kFrames; ++i) {
+    Eigen::Isometry3d camera = Eigen::Isometry3d::Identity();
+    camera.translation() = Eigen::Vector3d(0, 0, 2.0 * i);
+    const Eigen::Isometry3d imu = start * cameraFromImu.inverse() * camera * cameraFromImu;
+    std::ofstream(drive / "oxts" / "data" / ("000000000" + std::to_string(i) + ".txt"))
+        << packetOf(imu, 49.011, 8.423, 112.9);
+  }
+  std::ofstream(root_ / "forward.txt") << forwardPoses(2.0);
+  std::ofstream(root_ / "still.txt") << forwardPoses(0.0);
+
+  const std::string base = "-input_dir " + drive.string() + " -output_dir " + (root_ / "out").string();
+  RunResult r = batch(base + " -map " + (root_ / "oxts.pcd").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Input " + drive.string() + ": KITTI raw drive, 3 frame(s)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Poses: OXTS packets " + (drive / "oxts" / "data").string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3/3 frames"), std::string::npos) << r.output;
+  // The same map as from a poses file of the same camera poses; another one moves it.
+  r = batch(base + " -map " + (root_ / "given.pcd").string() + " -poses " + (root_ / "forward.txt").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("Poses: poses file " + (root_ / "forward.txt").string() + " (-poses)"), std::string::npos)
+      << r.output;
+  EXPECT_NEAR(static_cast<double>(sizeOf(root_ / "oxts.pcd")), static_cast<double>(sizeOf(root_ / "given.pcd")),
+              0.001 * static_cast<double>(sizeOf(root_ / "given.pcd")));
+  const Eigen::Vector3d same = meanOf(root_ / "oxts.pcd") - meanOf(root_ / "given.pcd");
+  EXPECT_LT(same.norm(), 1e-3) << same.transpose();
+  r = batch(base + " -map " + (root_ / "still.pcd").string() + " -poses " + (root_ / "still.txt").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_GT((meanOf(root_ / "oxts.pcd") - meanOf(root_ / "still.pcd")).norm(), 1.0);
+
+  // A missing packet is named before any frame runs.
+  fs::remove(drive / "oxts" / "data" / "0000000001.txt");
+  r = batch("-input_dir " + drive.string() + " -output_dir " + (root_ / "out2").string() + " -map " +
+            (root_ / "missing.pcd").string());
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot read the OXTS packet '" + (drive / "oxts" / "data" / "0000000001.txt").string() + "'"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(root_ / "out2" / "0000000000.pcd")) << "a frame was run";
 }
 
 TEST_F(BatchMap, RefusalsNameTheProblemBeforeAnyFrameIsRun) {

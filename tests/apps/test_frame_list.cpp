@@ -1,10 +1,13 @@
 // lidar_sgm_batch's pieces: frame discovery in each layout, list files, shards, the KITTI odometry
-// calibration and the manifest's JSON lines.
+// calibration, the manifest's JSON lines and what a re-run carries over from earlier manifests.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <fstream>
 #include <set>
 #include <string>
@@ -13,6 +16,7 @@
 #include "batch/frame_calibration.hpp"
 #include "batch/frame_list.hpp"
 #include "batch/manifest.hpp"
+#include "batch/output_state.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 
 namespace lidar_sgm {
@@ -97,6 +101,29 @@ TEST_F(FrameList, KittiRawDriveTakesTheCalibrationOfTheDateFolder) {
   EXPECT_EQ(frames[1].right, (drive / "image_03" / "data" / "0000000001.png").string());
   EXPECT_EQ(fs::path(frames[0].calib), fs::absolute(root_ / "2011_09_26"));
   EXPECT_EQ(frames[0].calibFormat, CalibrationFormat::Auto);
+}
+
+TEST_F(FrameList, EachLayoutIsNamedAndOnlyARawDriveHasOxtsPackets) {
+  const fs::path drive = root_ / "2011_09_26" / "2011_09_26_drive_0001_sync";
+  touch(drive / "velodyne_points" / "data" / "0000000007.bin");
+  EXPECT_EQ(directoryLayout(drive.string()), Layout::KittiRawDrive);
+  EXPECT_EQ(framesFromDirectory(drive.string())[0].oxts, (drive / "oxts" / "data" / "0000000007.txt").string())
+      << "the packet's path is given whether or not it exists: the map names it when it is missing";
+  const fs::path object = root_ / "object";
+  touch(object / "velodyne" / "000000.bin");
+  touch(object / "calib" / "000000.txt");
+  EXPECT_EQ(directoryLayout(object.string()), Layout::KittiObject);
+  EXPECT_TRUE(framesFromDirectory(object.string())[0].oxts.empty());
+  const fs::path sequence = root_ / "dataset" / "sequences" / "00";
+  touch(sequence / "velodyne" / "000000.bin");
+  touch(sequence / "calib.txt");
+  EXPECT_EQ(directoryLayout(sequence.string()), Layout::KittiOdometrySequence);
+  EXPECT_EQ(directoryLayout((root_ / "dataset").string()), Layout::KittiOdometryRoot);
+  EXPECT_STREQ(layoutName(Layout::KittiRawDrive), "KITTI raw drive");
+  EXPECT_STREQ(layoutName(Layout::KittiObject), "KITTI object layout");
+  EXPECT_STREQ(layoutName(Layout::KittiOdometrySequence), "KITTI odometry sequence");
+  EXPECT_STREQ(layoutName(Layout::KittiOdometryRoot), "KITTI odometry root");
+  EXPECT_STREQ(layoutName(Layout::ListFile), "list file");
 }
 
 TEST_F(FrameList, KittiObjectLayoutTakesEachFramesCalibrationFile) {
@@ -261,6 +288,70 @@ TEST(Manifest, JsonLinesEscapeTextAndCarryEveryField) {
             "{\"frame\":\"00/000001\",\"status\":\"failed\",\"points\":12,\"bytes\":4096,\"load_ms\":1.5,\"project_ms\":0.0,"
             "\"match_ms\":2.0,\"reproject_ms\":0.0,\"save_ms\":0.0,\"total_ms\":3.5,\"error\":\"cannot read "
             "'x\\\"y'\"}");
+}
+
+TEST(Manifest, AJsonLineReadsBackAsItsRecord) {
+  FrameRecord r;
+  r.frame = "00/0\"1\\x\n";
+  r.status = "ok";
+  r.points = 123456789;
+  r.bytes = 9876543210;
+  r.ms = {1.5, 2.34, 300.5, 4.0, 0.5};
+  r.error = "a\tb\x02";
+  const std::optional<FrameRecord> back = fromJsonLine(toJsonLine(r));
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->frame, r.frame);
+  EXPECT_EQ(back->status, "ok");
+  EXPECT_EQ(back->points, r.points);
+  EXPECT_EQ(back->bytes, r.bytes);
+  EXPECT_EQ(back->ms.load, 1.5);
+  EXPECT_EQ(back->ms.project, 2.3) << "as written: one decimal";
+  EXPECT_EQ(back->ms.match, 300.5);
+  EXPECT_EQ(back->ms.reproject, 4.0);
+  EXPECT_EQ(back->ms.save, 0.5);
+  EXPECT_EQ(back->error, r.error);
+  for (const char* other : {"", "an older run's line", "{\"frame\":\"a\"}", "{\"frame\":\"a\",\"status\":\"ok\",\"points\":",
+                            "[1, 2]"}) {
+    EXPECT_FALSE(fromJsonLine(other).has_value()) << other;
+  }
+  const std::string line = toJsonLine(r);
+  EXPECT_FALSE(fromJsonLine(line.substr(0, line.size() - 1)).has_value()) << "a line cut short";
+}
+
+TEST_F(FrameList, ASkippedFrameKeepsTheRecordOfTheRunThatMadeItsCloud) {
+  FrameRecord made;
+  made.frame = "000001";
+  made.status = "ok";
+  made.points = 5000;
+  made.bytes = 80000;
+  made.ms = {1, 2, 3, 4, 5};
+  FrameRecord failed = made;
+  failed.frame = "000002";
+  failed.status = "failed";
+  FrameRecord old = made;  // an older shard's record of frame 000001, overridden by the later manifest
+  old.points = 1;
+  write(root_ / "manifest.shard-0-of-2.jsonl", toJsonLine(old) + "\n");
+  fs::last_write_time(root_ / "manifest.shard-0-of-2.jsonl", fs::file_time_type::clock::now() - std::chrono::hours(1));
+  write(root_ / "manifest.jsonl", toJsonLine(made) + "\n" + toJsonLine(failed) + "\nnot json\n");
+  write(root_ / "other.jsonl", toJsonLine(failed) + "\n");
+  const std::map<std::string, FrameRecord> earlier = earlierFrameRecords(root_.string());
+  ASSERT_EQ(earlier.size(), 1u) << "failed records carry nothing";
+  EXPECT_EQ(earlier.at("000001").points, 5000u);
+
+  const FrameRecord skipped = skippedFrameRecord("000001", 80000, earlier);
+  EXPECT_EQ(skipped.status, "skipped");
+  EXPECT_EQ(skipped.points, 5000u);
+  EXPECT_EQ(skipped.bytes, 80000u);
+  EXPECT_EQ(skipped.ms.total(), 15.0);
+  // That skipped record, in the next run's manifest, carries the statistics on.
+  write(root_ / "manifest.jsonl", toJsonLine(skipped) + "\n");
+  EXPECT_EQ(earlierFrameRecords(root_.string()).at("000001").points, 5000u);
+
+  const FrameRecord replaced = skippedFrameRecord("000001", 79999, earlier);
+  EXPECT_EQ(replaced.points, 0u) << "a cloud of another size is not the one the record describes";
+  EXPECT_EQ(replaced.bytes, 79999u);
+  EXPECT_EQ(skippedFrameRecord("000003", 10, earlier).ms.total(), 0.0);
+  EXPECT_TRUE(earlierFrameRecords((root_ / "missing").string()).empty());
 }
 
 TEST_F(FrameList, ManifestAppendsOneFlushedLinePerRecordAndStartsEmpty) {

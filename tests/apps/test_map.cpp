@@ -124,13 +124,13 @@ TEST_F(MapPieces, PosesAreFoundInTheSequenceFolderFirstThenInTheDatasetsPosesFol
   EXPECT_EQ(fs::path(findPosesFile(frames)), fs::path(dataset));
   const std::string own = write(sequence / "poses.txt", std::string(kIdentity) + kIdentity);
   EXPECT_EQ(fs::path(findPosesFile(frames)), fs::path(own));
-  EXPECT_EQ(posesOfSequence(frames, "").size(), 2u);
+  EXPECT_EQ(posesOfSequence(frames, "").poses.size(), 2u);
 
   std::vector<Frame> object = frames;
   for (Frame& f : object) f.calibFormat = CalibrationFormat::Auto;
   EXPECT_EQ(findPosesFile(object), "") << "only an odometry sequence has poses of its own";
   EXPECT_NE(errorOf([&] { posesOfSequence(object, ""); }).find("give -poses FILE"), std::string::npos);
-  EXPECT_EQ(posesOfSequence(object, own).size(), 2u);
+  EXPECT_EQ(posesOfSequence(object, own).poses.size(), 2u);
 }
 
 TEST_F(MapPieces, PoseCountMustBeTheFrameCountAndOneSequenceOnly) {

@@ -179,6 +179,22 @@ StereoCalibration yamlCalibration() {
   return c;
 }
 
+TEST_F(CalibrationMemory, KittiRawRigidTransformIsRThenT) {
+  // calib_imu_to_velo.txt's form: a quarter turn about z, then the offset.
+  std::istringstream in("calib_time: 25-May-2012 16:47:16\nR: 0 -1 0 1 0 0 0 0 1\nT: -0.81 0.32 -0.8\n");
+  const Eigen::Isometry3d imuToVelo = io::readKittiRawRigidTransform(in, "<imu_to_velo>");
+  EXPECT_TRUE((imuToVelo * Eigen::Vector3d(1, 0, 0)).isApprox(Eigen::Vector3d(-0.81, 1.32, -0.8)));
+  EXPECT_EQ(imuToVelo.matrix().row(3), Eigen::RowVector4d(0, 0, 0, 1));
+  std::istringstream noT("R: 1 0 0 0 1 0 0 0 1\n");
+  expectErrorContaining([&] { io::readKittiRawRigidTransform(noT, "<imu_to_velo>"); },
+                        {"<imu_to_velo>", "missing key 'T'"});
+  std::istringstream sheared("R: 1 0.1 0 0 1 0 0 0 1\nT: 0 0 0\n");
+  expectErrorContaining([&] { io::readKittiRawRigidTransform(sheared, "<imu_to_velo>"); },
+                        {"<imu_to_velo>:1: key 'R'", "not a rotation"});
+  expectErrorContaining([] { io::readKittiRawRigidTransform("/no/such/calib_imu_to_velo.txt"); },
+                        {"/no/such/calib_imu_to_velo.txt", "no such file"});
+}
+
 TEST_F(CalibrationMemory, YamlStringAndStreamEqualThePathReader) {
   const std::string file = (dir_ / "calib.yaml").string();
   io::writeCalibrationYaml(file, yamlCalibration());

@@ -44,6 +44,12 @@ geometry::StereoCalibration readKittiRawCalibrationFromString(
     const std::string& camToCamSource = "<calib_cam_to_cam string>",
     const std::string& veloToCamSource = "<calib_velo_to_cam string>");
 
+/// A KITTI raw sensor-to-sensor file (calib_velo_to_cam.txt, calib_imu_to_velo.txt): R (row-major
+/// 3x3, a rotation) and T, the transform x_to = R * x_from + T. Other keys (calib_time) are ignored.
+Eigen::Isometry3d readKittiRawRigidTransform(const std::string& path);
+/// The same from a stream; `source` names it in messages.
+Eigen::Isometry3d readKittiRawRigidTransform(std::istream& in, const std::string& source);
+
 /// Our YAML (cv::FileStorage): width, height, K (3x3), baseline, T_cam_lidar (4x4).
 geometry::StereoCalibration readCalibrationYaml(const std::string& path);
 /// The same from a stream; `source` names it in messages.
