@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lidar_sgm/io/file_access.hpp"
+
 namespace fs = std::filesystem;
 
 namespace lidar_sgm {
@@ -63,6 +65,8 @@ bool isFile(const fs::path& path) {
 }  // namespace
 
 std::vector<Eigen::Isometry3d> readPoses(const std::string& path) {
+  const std::string unreadable = io::unreadableFileReason(path);
+  if (!unreadable.empty()) throw std::invalid_argument("cannot read the poses file '" + path + "': " + unreadable);
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("cannot read the poses file '" + path + "'");
   std::vector<Eigen::Isometry3d> poses;
