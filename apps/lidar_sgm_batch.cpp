@@ -26,6 +26,7 @@
 #include "batch/progress.hpp"
 #include "batch/sequence_map.hpp"
 #include "common/arguments.hpp"
+#include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/sgm_options.hpp"
@@ -60,9 +61,17 @@ void installStopHandlers() {
 }
 
 void printHelp(const char* program) {
-  std::printf(
+  char usage[1600];
+  std::snprintf(
+      usage, sizeof(usage),
       "Syntax is: %s (-input_dir DIR | -list FILE) -output_dir OUT <options>\n"
       "Densifies every frame of a sequence as lidar_sgm_densify densifies one (same options, same clouds).\n"
+      "A frame without an image pair runs LiDAR-only (colored from a lone left image); a frame whose file is\n"
+      "missing or bad is reported and skipped, the others go on. Exit code 0 only when every frame succeeded.\n"
+      "Every cloud is written to a temporary file renamed when complete; a re-run skips the frames whose cloud\n"
+      "exists. SIGINT/SIGTERM: the current frame is finished, the run stops (exit code 128 + signal).\n",
+      program);
+  const std::string inputs =
       "  -input_dir DIR           the frames of DIR, by its layout:\n"
       "                             KITTI odometry sequence  NN/{velodyne,image_2,image_3}/, NN/calib.txt\n"
       "                             KITTI odometry root      sequences/NN/... (every sequence; outputs OUT/NN/)\n"
@@ -72,32 +81,44 @@ void printHelp(const char* program) {
       "                           scans are .bin, .pcd or .ply; a frame's images are the .png of its stem\n"
       "  -list FILE               a frame per line: SCAN LEFT RIGHT CALIB, '-' for a missing image; '#'\n"
       "                           comments; relative paths from FILE's folder; CALIB as lidar_sgm_densify's\n"
-      "  -output_dir OUT          OUT/<frame>.pcd per frame (created if missing), and the manifest\n"
-      "                           OUT/manifest.jsonl (OUT/manifest.shard-K-of-N.jsonl with -shard): a JSON\n"
-      "                           line per frame: frame, status ok|skipped|failed, points, timings, error\n"
-      "A frame without an image pair runs LiDAR-only (colored from a lone left image); a frame whose file is\n"
-      "missing or bad is reported and skipped, the others go on. Exit code 0 only when every frame succeeded.\n"
-      "Every cloud is written to a temporary file renamed when complete; a re-run skips the frames whose cloud\n"
-      "exists. SIGINT/SIGTERM: the current frame is finished, the run stops (exit code 128 + signal).\n"
-      "where options are:\n"
-      "  -shard K/N               only frames i with i %% N == K (0 <= K < N): N processes cover the sequence\n"
+      "  -shard K/N               only frames i with i % N == K (0 <= K < N): N processes cover the sequence\n"
       "                           once, with the same clouds as one process (default: 0/1)\n"
-      "  -overwrite               redo the frames whose cloud exists (default: skip them)\n"
-      "  -extension pcd|ply       the clouds' file type (default: pcd)\n"
+      "  -image_size WxH          image size when neither the calibration nor an image gives it\n" +
+      lidar_sgm::apps::inputLimitOptionsHelp();
+  char progress[400];
+  std::snprintf(progress, sizeof(progress),
+                "  -progress N              on a terminal, one progress line redrawn in place on stderr; otherwise a\n"
+                "                           progress line every N frames (default: %d)\n",
+                kDefaultProgressEvery);
+  const std::string outputs =
+      std::string(
+          "  -output_dir OUT          OUT/<frame>.pcd per frame (created if missing), and the manifest\n"
+          "                           OUT/manifest.jsonl (OUT/manifest.shard-K-of-N.jsonl with -shard): a JSON\n"
+          "                           line per frame: frame, status ok|skipped|failed, points, timings, error\n"
+          "  -overwrite               redo the frames whose cloud exists (default: skip them)\n"
+          "  -extension pcd|ply       the clouds' file type (default: pcd)\n") +
+      progress + lidar_sgm::apps::outputOptionsHelp() + lidar_sgm::apps::mapOptionsHelp();
+  const std::string speed =
       "  -jobs J                  frames densified at once, each on its own worker (0 = one per CPU this\n"
       "                           process may use); the matcher threads of each are -threads, else those\n"
-      "                           CPUs shared out; neither changes a cloud (default: 0)\n"
-      "  -progress N              on a terminal, one progress line redrawn in place on stderr; otherwise a\n"
-      "                           progress line every N frames (default: %d)\n"
-      "  -image_size WxH          image size when neither the calibration nor an image gives it\n"
-      "%s"
-      "%s"
-      "%s"
-      "  -h, --help               this help\n"
-      "  --version                the tool's name and version\n"
-      "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
-      program, kDefaultProgressEvery, lidar_sgm::apps::sgmOptionsHelp().c_str(),
-      lidar_sgm::apps::outputOptionsHelp().c_str(), lidar_sgm::apps::mapOptionsHelp().c_str());
+      "                           CPUs shared out; neither changes a cloud (default: 0)\n" +
+      lidar_sgm::apps::sgmSpeedHelp();
+  const std::vector<lidar_sgm::apps::HelpExample> examples{
+      {"A drive rendered by 'lidar_sgm_synth -out drive -sequence 3 -step 1' (KITTI odometry layout), with its map:",
+       "lidar_sgm_batch -input_dir drive -output_dir drive_dense -map drive_map.pcd"},
+      {"Frames in KITTI's object layout ('lidar_sgm_synth -out frames -n 2'), at half scale, two at once:",
+       "lidar_sgm_batch -input_dir frames -output_dir frames_dense -scale 0.5 -jobs 2"},
+      {"A KITTI raw drive (its calibration in the date folder above it), the clouds as PLY:",
+       "lidar_sgm_batch -input_dir 2011_09_26/2011_09_26_drive_0005_sync -output_dir drive_0005 -extension ply"},
+  };
+  const std::string text = lidar_sgm::apps::helpText(usage,
+                                                     {{"Inputs", inputs},
+                                                      {"Outputs", outputs},
+                                                      {"Method", lidar_sgm::apps::sgmMethodHelp()},
+                                                      {"Speed", speed},
+                                                      {"Filters", lidar_sgm::apps::densifyFilterOptionsHelp()}},
+                                                     examples);
+  std::fputs(text.c_str(), stdout);
 }
 
 /// -jobs (0 = one per CPU this process may use) and the matcher threads of each (-threads, else

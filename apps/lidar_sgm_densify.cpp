@@ -11,6 +11,7 @@
 #include <pcl/console/print.h>
 
 #include "common/arguments.hpp"
+#include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/output_transaction.hpp"
@@ -33,26 +34,29 @@ using lidar_sgm::apps::Timer;
 namespace {
 
 void printHelp(const char* program) {
+  using lidar_sgm::apps::HelpExample;
+  using lidar_sgm::apps::HelpGroup;
   const lidar_sgm::io::CloudPreviewOptions preview;
-  std::printf(
+  char usage[1200];
+  std::snprintf(
+      usage, sizeof(usage),
       "Syntax is: %s INPUT.{pcd,bin,ply} OUTPUT.{pcd,ply} -calib CALIB [-left L.png] [-right R.png] <options>\n"
+      "Densifies one LiDAR scan: fused LiDAR-SGM with a rectified stereo pair, LiDAR-only SGM without one.\n"
       "  INPUT   the LiDAR scan: KITTI velodyne .bin, or PCD/PLY with x, y, z fields (LiDAR frame, metres)\n"
       "  OUTPUT  the dense cloud, PCD or PLY (see -format): x y z, rgb when there is a left image, and the\n"
-      "          per-point confidence in [0, 1] (field `confidence`; not with -no_confidence)\n"
-      "  -calib CALIB             KITTI object calib (.txt), KITTI raw (calib_cam_to_cam.txt or its folder,\n"
-      "                           with calib_velo_to_cam.txt beside it) or our YAML (.yaml/.yml)\n"
+      "          per-point confidence in [0, 1] (field `confidence`; not with -no_confidence)\n",
+      program);
+  const std::string inputs =
+      "  -calib CALIB             KITTI object calib (.txt: P2, P3, R0_rect, Tr_velo_to_cam), KITTI raw (the\n"
+      "                           date folder, or its calib_cam_to_cam.txt with calib_velo_to_cam.txt beside\n"
+      "                           it) or our YAML (.yaml/.yml)\n"
       "  -left L.png -right R.png rectified stereo pair: fused LiDAR-SGM (default without them: LiDAR-only)\n"
       "  -left L.png              alone: LiDAR-only SGM, the output colored from L\n"
-      "  -image_size WxH          image size when neither the calibration nor an image gives it (KITTI object calib)\n"
-      "where options are:\n"
-      "%s"
-      "%s"
-      "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
-      "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
-      "                           0 = none or beyond -max_depth)\n"
-      "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
-      "  -confidence OUT.png      also write the confidence (8-bit gray: 255 x the probability that the\n"
-      "                           disparity is right, 0 = none)\n"
+      "  -image_size WxH          image size when neither the calibration nor an image gives it (KITTI object calib)\n" +
+      lidar_sgm::apps::inputLimitOptionsHelp();
+  char previewLines[1600];
+  std::snprintf(
+      previewLines, sizeof(previewLines),
       "  -preview OUT.png         also write a picture of the dense cloud seen from above and behind the rig\n"
       "                           (point colors, or depth colors without -left; grid every 10 m on the ground,\n"
       "                           the rig a white triangle): sky curtains and flying points stand out\n"
@@ -63,13 +67,41 @@ void printHelp(const char* program) {
       "  -preview_height M        its camera's height above the rig camera [m] (default: %g)\n"
       "  -preview_behind M        its camera's distance behind the rig camera [m] (default: %g)\n"
       "  -preview_pitch DEG       its camera looks down by DEG degrees (default: %g)\n"
-      "  -preview_ground M        the ground's distance below the rig camera, for the grid [m] (default: %g)\n"
-      "  -h, --help               this help\n"
-      "  --version                the tool's name and version\n"
-      "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
-      program, lidar_sgm::apps::sgmOptionsHelp().c_str(), lidar_sgm::apps::outputOptionsHelp().c_str(),
-      preview.width, preview.height,
-      preview.cameraHeight, preview.cameraBehind, preview.pitchDeg, preview.groundBelowCamera);
+      "  -preview_ground M        the ground's distance below the rig camera, for the grid [m] (default: %g)\n",
+      preview.width, preview.height, preview.cameraHeight, preview.cameraBehind, preview.pitchDeg,
+      preview.groundBelowCamera);
+  const std::string outputs =
+      lidar_sgm::apps::outputOptionsHelp() +
+      "  -disparity OUT.png       also write the dense disparity (KITTI format: uint16, disparity*256, 0 = none)\n"
+      "  -depth OUT.png           also write the dense depth (KITTI depth-completion format: uint16, metres*256,\n"
+      "                           0 = none or beyond -max_depth)\n"
+      "  -color OUT.png           also write a color-mapped picture of the disparity (invalid = black)\n"
+      "  -confidence OUT.png      also write the confidence (8-bit gray: 255 x the probability that the\n"
+      "                           disparity is right, 0 = none)\n" +
+      previewLines;
+  const std::string sample = "data/sample/";
+  const std::string pair = " -left " + sample + "image_2/000000.png -right " + sample + "image_3/000000.png";
+  const std::string raw = "2011_09_26/2011_09_26_drive_0005_sync/";
+  const std::vector<HelpExample> examples{
+      {"A KITTI object frame (the bundled sample), fused, with its disparity image and a preview:",
+       "lidar_sgm_densify " + sample + "velodyne/000000.bin dense.pcd -calib " + sample + "calib/000000.txt" + pair +
+           " -disparity disparity.png -preview preview.png"},
+      {"LiDAR-only (no right image; colored from the left one), at half scale, as PLY:",
+       "lidar_sgm_densify " + sample + "velodyne/000000.bin lidar_only.ply -calib " + sample +
+           "calib/000000.txt -left " + sample + "image_2/000000.png -scale 0.5"},
+      {"A KITTI raw frame: the date folder is the calibration (calib_cam_to_cam.txt, calib_velo_to_cam.txt):",
+       "lidar_sgm_densify " + raw + "velodyne_points/data/0000000000.bin raw.pcd -calib 2011_09_26 -left " + raw +
+           "image_02/data/0000000000.png -right " + raw + "image_03/data/0000000000.png -frame camera"},
+  };
+  const std::string text = lidar_sgm::apps::helpText(
+      usage,
+      {{"Inputs", inputs},
+       {"Outputs", outputs},
+       {"Method", lidar_sgm::apps::sgmMethodHelp()},
+       {"Speed", lidar_sgm::apps::sgmSpeedHelp()},
+       {"Filters", lidar_sgm::apps::densifyFilterOptionsHelp()}},
+      examples);
+  std::fputs(text.c_str(), stdout);
 }
 
 /// -format, -frame, -max_depth, -stride (shared with lidar_sgm_batch), and OUTPUT's extension

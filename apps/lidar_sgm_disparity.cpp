@@ -8,6 +8,7 @@
 
 #include "common/arguments.hpp"
 #include "common/filter_options.hpp"
+#include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/output_transaction.hpp"
@@ -30,27 +31,46 @@ using lidar_sgm::apps::sgmValueOptions;
 namespace {
 
 void printHelp(const char* program) {
-  std::printf(
-      "Syntax is: %s LEFT.png [RIGHT.png] OUT.png <options>\n"
-      "  LEFT OUT        LiDAR-only SGM (needs -lidar or -lidar_depth; LEFT gives the image size)\n"
-      "  LEFT RIGHT OUT  stereo-only SGM, or fused LiDAR-SGM with -lidar / -lidar_depth\n"
-      "  OUT.png is written in KITTI disparity format (uint16, disparity*256, 0 = invalid).\n"
-      "  Images: gray or color, 8 or 16 bit.\n"
-      "where options are:\n"
+  char usage[800];
+  std::snprintf(usage, sizeof(usage),
+                "Syntax is: %s LEFT.png [RIGHT.png] OUT.png <options>\n"
+                "  LEFT OUT        LiDAR-only SGM (needs -lidar or -lidar_depth; LEFT gives the image size)\n"
+                "  LEFT RIGHT OUT  stereo-only SGM, or fused LiDAR-SGM with -lidar / -lidar_depth\n"
+                "  OUT.png is written in KITTI disparity format (uint16, disparity*256, 0 = invalid).\n"
+                "  Images: gray or color, 8 or 16 bit.\n",
+                program);
+  const std::string inputs =
       "  -lidar SPARSE.png        sparse LiDAR disparity, KITTI format (uint16, disparity*256, 0 = none)\n"
       "  -lidar_depth DEPTH.png   sparse LiDAR depth, KITTI depth format (uint16, metres*256, 0 = none)\n"
-      "  -fb F                    focal length [px] * baseline [m] for -lidar_depth (d = F/z)\n"
-      "%s"
-      "  -no_crop_to_scan         LiDAR-only: keep pixels above the scan's top / below its bottom beam (default:\n"
-      "                           cleared, nothing was measured there; as lidar_sgm_densify)\n"
-      "%s"
+      "  -fb F                    focal length [px] * baseline [m] for -lidar_depth (d = F/z)\n";
+  const std::string outputs =
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -confidence OUT_CONF.png also write the confidence (8-bit gray: 255 x the probability that the\n"
-      "                           disparity is right, 0 = none)\n"
-      "  -h, --help               this help\n"
-      "  --version                the tool's name and version\n"
-      "Every option also takes the GNU spelling: --alpha 0.7, --alpha=0.7.\n",
-      program, lidar_sgm::apps::sgmOptionsHelp().c_str(), lidar_sgm::apps::filterOptionsHelp().c_str());
+      "                           disparity is right, 0 = none)\n";
+  const std::string filters =
+      lidar_sgm::apps::sgmConfidenceHelp() +
+      "  -no_crop_to_scan         LiDAR-only: keep pixels above the scan's top / below its bottom beam (default:\n"
+      "                           cleared, nothing was measured there; as lidar_sgm_densify)\n" +
+      lidar_sgm::apps::filterOptionsHelp();
+  const std::string left = "data/sample/image_2/000000.png";
+  const std::string right = "data/sample/image_3/000000.png";
+  const std::string lidar = "data/sample/lidar_disp/000000.png";
+  const std::vector<lidar_sgm::apps::HelpExample> examples{
+      {"Stereo-only SGM on the sample's pair, with a color picture of the result:",
+       "lidar_sgm_disparity " + left + " " + right + " stereo.png -color stereo_color.png"},
+      {"Fused LiDAR-SGM with the scan's sparse disparity (KITTI format), and its confidence:",
+       "lidar_sgm_disparity " + left + " " + right + " fused.png -lidar " + lidar + " -confidence confidence.png"},
+      {"LiDAR-only SGM at half scale (the left image gives the size):",
+       "lidar_sgm_disparity " + left + " lidar_only.png -lidar " + lidar + " -scale 0.5"},
+  };
+  const std::string text = lidar_sgm::apps::helpText(usage,
+                                                     {{"Inputs", inputs},
+                                                      {"Outputs", outputs},
+                                                      {"Method", lidar_sgm::apps::sgmMethodHelp()},
+                                                      {"Speed", lidar_sgm::apps::sgmSpeedHelp()},
+                                                      {"Filters", filters}},
+                                                     examples);
+  std::fputs(text.c_str(), stdout);
 }
 
 void requirePngOutput(const std::string& path, const std::vector<std::string>& inputs) {

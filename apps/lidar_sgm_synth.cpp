@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "common/arguments.hpp"
+#include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "common/timer.hpp"
@@ -32,7 +33,9 @@ const synth::FrameOptions kDefaults;
 const synth::SequenceOptions kSequenceDefaults;
 
 void printHelp(const char* program) {
-  std::printf(
+  char usage[2400];
+  std::snprintf(
+      usage, sizeof(usage),
       "Syntax is: %s -out DIR <options>\n"
       "  Renders N synthetic street frames (stereo pair, LiDAR sweep, exact ground truth) into DIR:\n"
       "    image_2/ image_3/ [image_up/]  left, right [, third] color images (PNG)\n"
@@ -48,24 +51,39 @@ void printHelp(const char* program) {
       "    calib.txt  KITTI odometry calibration (P0 = P2 left, P1 = P3 right, Tr: LiDAR to camera 0)\n"
       "    poses.txt  KITTI odometry poses: line i = 3x4 row-major, left camera i to left camera 0\n"
       "    times.txt  frame times [s], 0.1 s apart\n"
-      "  The car drives straight along the street; the world is static, so the GT is exact in every frame.\n"
-      "where options are:\n"
+      "  The car drives straight along the street; the world is static, so the GT is exact in every frame.\n",
+      program);
+  const std::string outputs =
       "  -out DIR              output directory (created if missing)\n"
       "  -n N                  number of independent frames, >= 1 (default: 1)\n"
-      "  -sequence N           number of frames of one drive, in [1, 100000]; not with -n\n"
+      "  -sequence N           number of frames of one drive, in [1, 100000]; not with -n\n";
+  char scene[1600];
+  std::snprintf(
+      scene, sizeof(scene),
       "  -step S               metres driven between frames of -sequence, in (0, 5] (default: %g, ~29 km/h at 10 Hz)\n"
       "  -seed S               seed of the first frame (of the street with -sequence), >= 0 (default: %u)\n"
-      "  -weather clear|rain   rain: fog, low contrast, wet road, noise, streaks; images only (default: clear)\n"
+      "  -weather clear|rain   rain: fog, low contrast, wet road, noise, streaks; images only (default: clear)\n",
+      kSequenceDefaults.step, kDefaults.seed);
+  char sensors[1600];
+  std::snprintf(
+      sensors, sizeof(sensors),
       "  -beams 64|128         64: HDL-64E (+2..-24.8 deg, 120 m); 128: +15..-25 deg, 245 m (default: %d)\n"
       "  -third_camera         also render a camera 0.20 m above the left one (image_up/, P_up)\n"
       "  -baseline B           stereo baseline [m], in [0.05, 2] (default: %g)\n"
       "  -width W -height H    image size [px]; KITTI intrinsics scaled to it (default: %dx%d)\n"
-      "  -lidar_in_camera_view keep only the LiDAR points that project into the left image\n"
-      "  -h, --help            this help\n"
-      "  --version             the tool's name and version\n"
-      "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
-      program, kSequenceDefaults.step, kDefaults.seed, kDefaults.beams, kDefaults.baseline, kDefaults.width,
-      kDefaults.height);
+      "  -lidar_in_camera_view keep only the LiDAR points that project into the left image\n",
+      kDefaults.beams, kDefaults.baseline, kDefaults.width, kDefaults.height);
+  const std::vector<lidar_sgm::apps::HelpExample> examples{
+      {"Two independent frames in KITTI's object layout (then: lidar_sgm_batch -input_dir frames ...):",
+       "lidar_sgm_synth -out frames -n 2"},
+      {"A drive of 3 frames, 1 m apart, as a KITTI odometry sequence (for lidar_sgm_batch and its map):",
+       "lidar_sgm_synth -out drive -sequence 3 -step 1"},
+      {"A rainy frame seen by a 128-beam LiDAR, at half KITTI's size:",
+       "lidar_sgm_synth -out rain -weather rain -beams 128 -width 621 -height 188"},
+  };
+  const std::string text = lidar_sgm::apps::helpText(
+      usage, {{"Outputs", outputs}, {"Scene", scene}, {"Sensors", sensors}}, examples);
+  std::fputs(text.c_str(), stdout);
 }
 
 cv::Mat toMat(const lidar_sgm::Image<lidar_sgm::Rgb8>& image) {

@@ -30,13 +30,18 @@ endif()
 
 # Compiles the backends' object libraries into `target` (the core). They are private and not
 # installed, so the link is build-tree only; in the package, a static core names the backends'
-# own links (Highway, OpenMP) itself, and a shared one has them inside.
+# own links (Highway, OpenMP) itself, and a shared one has them inside. The CUDA runtime is the
+# exception: the package carries its own copy (lidar_sgm::cuda_runtime, see
+# lidar_sgm_install_package), so that a user without the CUDA toolkit can still link a static core.
 function(lidar_sgm_link_backends target)
   foreach(backend IN LISTS ARGN)
     target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:${backend}>)
     get_target_property(backend_links ${backend} INTERFACE_LINK_LIBRARIES)
     if(backend_links)
       foreach(link IN LISTS backend_links)
+        if(link STREQUAL "CUDA::cudart_static")
+          set(link lidar_sgm::cuda_runtime)
+        endif()
         target_link_libraries(${target} PRIVATE $<INSTALL_INTERFACE:${link}>)
       endforeach()
     endif()
@@ -124,7 +129,7 @@ function(lidar_sgm_install_package)
   set(LIDAR_SGM_CORE_NEEDS_OPENMP OFF)
   set(LIDAR_SGM_CORE_NEEDS_CUDA OFF)
   if(core_type STREQUAL "STATIC_LIBRARY")
-    if("$<INSTALL_INTERFACE:CUDA::cudart_static>" IN_LIST core_links)
+    if("$<INSTALL_INTERFACE:lidar_sgm::cuda_runtime>" IN_LIST core_links)
       set(LIDAR_SGM_CORE_NEEDS_CUDA ON)
     endif()
     if("$<INSTALL_INTERFACE:hwy::hwy>" IN_LIST core_links)
@@ -134,6 +139,19 @@ function(lidar_sgm_install_package)
       set(LIDAR_SGM_CORE_NEEDS_OPENMP ON)
     endif()
   endif()
+  # A static core with the cuda backend needs the static CUDA runtime wherever it is linked. The
+  # package ships the copy it was built with (NVIDIA lists libcudart_static.a as redistributable):
+  # a CPU-only user, on a machine without the toolkit, then configures and links as anyone else,
+  # and the runtime matches the kernels' toolkit. A shared core has the runtime inside.
+  set(LIDAR_SGM_CUDA_RUNTIME_DIR "${CMAKE_INSTALL_LIBDIR}/lidar_sgm")
+  if(LIDAR_SGM_CORE_NEEDS_CUDA)
+    find_package(CUDAToolkit QUIET)
+    if(NOT CUDA_cudart_static_LIBRARY)
+      message(FATAL_ERROR "lidar_sgm: the static core links the CUDA runtime, but libcudart_static was not found")
+    endif()
+    install(FILES "${CUDA_cudart_static_LIBRARY}" DESTINATION "${LIDAR_SGM_CUDA_RUNTIME_DIR}"
+      RENAME libcudart_static.a)
+  endif()
   set(LIDAR_SGM_BUILT_COMPONENTS "${built}")
   set(LIDAR_SGM_EIGEN3_VERSION "${Eigen3_VERSION}")
   set(LIDAR_SGM_OPENCV_VERSION "${OpenCV_VERSION_MAJOR}.${OpenCV_VERSION_MINOR}")
@@ -141,7 +159,8 @@ function(lidar_sgm_install_package)
 
   configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/lidar_sgmConfig.cmake.in
     ${PROJECT_BINARY_DIR}/lidar_sgmConfig.cmake
-    INSTALL_DESTINATION ${LIDAR_SGM_INSTALL_CMAKEDIR})
+    INSTALL_DESTINATION ${LIDAR_SGM_INSTALL_CMAKEDIR}
+    PATH_VARS LIDAR_SGM_CUDA_RUNTIME_DIR)
   # 0.x: a minor release may break the API, so 0.1 must not satisfy a request for 0.2, nor 0.2 one
   # for 0.1 (SameMinorVersion); from 1.0 on, SameMajorVersion is the promise.
   if(PROJECT_VERSION_MAJOR EQUAL 0)
@@ -155,21 +174,25 @@ function(lidar_sgm_install_package)
   install(FILES ${PROJECT_BINARY_DIR}/lidar_sgmConfig.cmake ${PROJECT_BINARY_DIR}/lidar_sgmConfigVersion.cmake
     DESTINATION ${LIDAR_SGM_INSTALL_CMAKEDIR})
 
-  # pkg-config for the core (C++17 and the standard library only; static users also need the
-  # fast backend's Highway and OpenMP, listed as private).
-  set(LIDAR_SGM_PC_LIBS_PRIVATE "")
-  set(LIDAR_SGM_PC_REQUIRES_PRIVATE "")
+  # pkg-config for the core (C++17 and the standard library only). A static core (the default)
+  # is linked by its user together with the fast backend's Highway and OpenMP and the cuda
+  # backend's runtime (the package's copy): they go into Requires and Libs, so that a plain
+  # `pkg-config --libs lidar_sgm` links. A shared core has them inside and names nothing else.
+  set(pc_requires "")
+  set(pc_libs "")
   if(LIDAR_SGM_CORE_NEEDS_HWY)
-    set(LIDAR_SGM_PC_REQUIRES_PRIVATE "libhwy")
+    set(pc_requires "libhwy")
   endif()
   if(LIDAR_SGM_CORE_NEEDS_OPENMP)
-    set(LIDAR_SGM_PC_LIBS_PRIVATE "-fopenmp")
+    set(pc_libs "-fopenmp")
   endif()
   if(LIDAR_SGM_CORE_NEEDS_CUDA)
-    # The cuda backend's static CUDA runtime (and what it needs from the system).
-    find_package(CUDAToolkit QUIET)
-    string(APPEND LIDAR_SGM_PC_LIBS_PRIVATE " -L${CUDAToolkit_LIBRARY_DIR} -lcudart_static -ldl -lrt -lpthread")
+    # The static CUDA runtime and what it needs from the system.
+    string(APPEND pc_libs " -L\${libdir}/lidar_sgm -lcudart_static -ldl -lrt -lpthread")
   endif()
+  string(STRIP "${pc_libs}" pc_libs)
+  set(LIDAR_SGM_PC_REQUIRES "${pc_requires}")
+  set(LIDAR_SGM_PC_LIBS "${pc_libs}")
   # The prefix is found from the .pc file's own place, so `cmake --install --prefix P` (which the
   # configure step never saw) and a moved prefix both work; absolute install dirs stay absolute.
   if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")

@@ -5,11 +5,14 @@
 #include <stdexcept>
 
 #include "lidar_sgm/io/calibration_io.hpp"
+#include "lidar_sgm/io/file_access.hpp"
 
 namespace lidar_sgm {
 namespace apps {
 
 geometry::StereoCalibration readKittiOdometryCalibration(const std::string& path, int width, int height) {
+  const std::string unreadable = io::unreadableFileReason(path);
+  if (!unreadable.empty()) throw std::runtime_error("cannot read the calibration '" + path + "': " + unreadable);
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read the calibration '" + path + "'");
   // The odometry images are rectified already (R0_rect = I) and Tr maps the LiDAR into the

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "common/output_paths.hpp"
+#include "lidar_sgm/io/file_access.hpp"
 
 namespace fs = std::filesystem;
 
@@ -151,6 +152,8 @@ std::vector<Frame> framesFromDirectory(const std::string& dir) {
 }
 
 std::vector<Frame> framesFromList(const std::string& listPath) {
+  const std::string unreadable = io::unreadableFileReason(listPath);
+  if (!unreadable.empty()) throw std::invalid_argument("cannot read the list file '" + listPath + "': " + unreadable);
   std::ifstream in(listPath);
   if (!in) throw std::invalid_argument("cannot read the list file '" + listPath + "'");
   const fs::path base = fs::path(listPath).parent_path();

@@ -10,6 +10,7 @@
 
 #include "batch/number_line.hpp"
 #include "batch/oxts_poses.hpp"
+#include "lidar_sgm/io/file_access.hpp"
 
 namespace fs = std::filesystem;
 
@@ -54,6 +55,8 @@ bool isFile(const fs::path& path) {
 }  // namespace
 
 std::vector<Eigen::Isometry3d> readPoses(const std::string& path) {
+  const std::string unreadable = io::unreadableFileReason(path);
+  if (!unreadable.empty()) throw std::invalid_argument("cannot read the poses file '" + path + "': " + unreadable);
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("cannot read the poses file '" + path + "'");
   std::vector<Eigen::Isometry3d> poses;

@@ -23,9 +23,9 @@ const std::set<std::string>& sgmFlagOptions() {
   return flags;
 }
 
-std::string sgmOptionsHelp() {
+std::string sgmMethodHelp() {
   const Parameters d;
-  char text[5600];
+  char text[4400];
   std::snprintf(text, sizeof(text),
                 "  -alpha A                 LiDAR weight of the fused cost, in [0, 1] (default: %g)\n"
                 "  -alpha_mode fixed|adaptive  fixed: alpha at every pixel; adaptive: more LiDAR weight within 8 px of\n"
@@ -49,22 +49,38 @@ std::string sgmOptionsHelp() {
                 "  -median 0|3|5            median filter size, 0 = off (default: %d)\n"
                 "  -census 9x7|cs9x7        census window: full or centre-symmetric (default: 9x7)\n"
                 "  -stereo_cost_without_lidar  full C_S where no LiDAR point is (default: the paper's (1-alpha)*C_S)\n"
-                "  -lidar_coverage_rows R   fused LR check spares pixels with a LiDAR point within +-R rows (default: %d)\n"
+                "  -lidar_coverage_rows R   fused LR check spares pixels with a LiDAR point within +-R rows (default: %d)\n",
+                d.alpha, toString(d.alphaMode).c_str(), d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
+                d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows);
+  return text;
+}
+
+std::string sgmSpeedHelp() {
+  const Parameters d;
+  char text[1200];
+  std::snprintf(text, sizeof(text),
                 "  -scale 1|0.5             match at full or half resolution (0.5: the paper's fast mode; needs\n"
                 "                           -num_disparities a multiple of 32 and an even -min_disparity; the\n"
                 "                           disparity and cloud keep the full size) (default: %g)\n"
                 "  -threads N               matcher threads, 0 = all hardware threads; never changes the result\n"
                 "                           (default: %d)\n"
                 "  -backend NAME            auto, cpu_ref, cpu or cuda (default: auto, the fastest built)\n"
+                "  -no_confidence           compute no confidence (faster; no confidence field, -min_confidence 0)\n",
+                d.scale, d.threads);
+  return text;
+}
+
+std::string sgmConfidenceHelp() {
+  char text[600];
+  std::snprintf(text, sizeof(text),
                 "  -min_confidence C        drop pixels (and points) whose confidence, about the probability that\n"
                 "                           the disparity is right, is below C in [0, 1]; 0 keeps every pixel\n"
-                "                           (default: %g)\n"
-                "  -no_confidence           compute no confidence (faster; no confidence field, -min_confidence 0)\n",
-                d.alpha, toString(d.alphaMode).c_str(), d.sigma, d.lidarCostCap, d.numDisparities, d.minDisparity, d.paths, d.P1, d.P2,
-                d.uniquenessRatio, d.disp12MaxDiff, d.medianSize, d.lidarCoverageRows, d.scale, d.threads,
+                "                           (default: %g)\n",
                 kDefaultMinConfidence);
   return text;
 }
+
+std::string sgmOptionsHelp() { return sgmMethodHelp() + sgmSpeedHelp() + sgmConfidenceHelp(); }
 
 Parameters parametersFrom(const Arguments& args) {
   Parameters p;

@@ -14,7 +14,12 @@ namespace apps {
 /// Option names taking a value (-alpha 0.7 ...) and flags (-no_lr_check ...).
 const std::set<std::string>& sgmValueOptions();
 const std::set<std::string>& sgmFlagOptions();
-/// The help lines for those options, with their defaults.
+/// The help lines for those options, with their defaults, by help group: the method's (cost,
+/// range, aggregation, checks), the speed's (-scale, -threads, -backend, -no_confidence) and the
+/// confidence filter's (-min_confidence); sgmOptionsHelp() is all three.
+std::string sgmMethodHelp();
+std::string sgmSpeedHelp();
+std::string sgmConfidenceHelp();
 std::string sgmOptionsHelp();
 /// Parameters from the options, validated (std::invalid_argument names the bad one).
 Parameters parametersFrom(const Arguments& args);

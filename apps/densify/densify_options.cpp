@@ -80,9 +80,8 @@ std::set<std::string> densifyFlagOptions() {
 }
 
 std::string outputOptionsHelp() {
-  const geometry::ProjectionOptions projection;
   const geometry::ReprojectionOptions reprojection;
-  char text[3200];
+  char text[1600];
   std::snprintf(
       text, sizeof(text),
       "  -format binary|compressed|ascii\n"
@@ -95,18 +94,33 @@ std::string outputOptionsHelp() {
       "  -max_depth M             drop output points deeper than M metres, 0 = keep all (default: %g)\n"
       "  -stride S                every S-th pixel in x and y (default: %d)\n"
       "  -voxel V                 down-sample to one point per V-metre voxel (pcl::VoxelGrid: the centroid,\n"
-      "                           color and confidence averaged; unorganized), 0 = off (default: 0)\n"
+      "                           color and confidence averaged; unorganized), 0 = off (default: 0)\n",
+      reprojection.maxDepth, reprojection.stride);
+  return text;
+}
+
+std::string densifyFilterOptionsHelp() {
+  const geometry::ProjectionOptions projection;
+  char text[1200];
+  std::snprintf(
+      text, sizeof(text),
       "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with points\n"
       "                           more than max(%g px, %g*d) nearer on two opposite sides within +-%d columns,\n"
       "                           +-%d rows)\n"
       "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
-      "                           cleared, nothing was measured there)\n"
-      "  -max_points N            refuse an input scan of more than N points, before reading it whole\n"
-      "                           (default: %llu)\n",
-      reprojection.maxDepth, reprojection.stride, projection.occlusion.minGap, projection.occlusion.relativeGap,
-      projection.occlusion.halfWidth, projection.occlusion.halfHeight,
-      static_cast<unsigned long long>(io::kMaxCloudPoints));
-  return text + filterOptionsHelp();
+      "                           cleared, nothing was measured there)\n",
+      projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
+      projection.occlusion.halfHeight);
+  return sgmConfidenceHelp() + text + filterOptionsHelp();
+}
+
+std::string inputLimitOptionsHelp() {
+  char text[400];
+  std::snprintf(text, sizeof(text),
+                "  -max_points N            refuse an input scan of more than N points, before reading it whole\n"
+                "                           (default: %llu)\n",
+                static_cast<unsigned long long>(io::kMaxCloudPoints));
+  return text;
 }
 
 std::uint64_t maxPointsFrom(const Arguments& args) {

@@ -50,9 +50,12 @@ std::uint64_t maxPointsFrom(const Arguments& args);
 std::set<std::string> densifyValueOptions();
 std::set<std::string> densifyFlagOptions();
 
-/// The help lines of the options after the matcher's: -format ... -no_crop_to_scan and the
-/// output filters'.
+/// The help lines of the cloud's options (-format, -keep_organized, -frame, -max_depth, -stride,
+/// -voxel), of the filters (-min_confidence, -no_occlusion_filter, -no_crop_to_scan and the output
+/// filters') and of the input's limit (-max_points), one help group each.
 std::string outputOptionsHelp();
+std::string densifyFilterOptionsHelp();
+std::string inputLimitOptionsHelp();
 
 /// Checks every method option before any file is read (std::invalid_argument names the bad one).
 void checkDensifyOptions(const Arguments& args);

@@ -11,6 +11,7 @@
 
 #include "common/arguments.hpp"
 #include "common/filter_options.hpp"
+#include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
@@ -31,39 +32,60 @@ using namespace lidar_sgm::eval;
 namespace {
 
 void printHelp(const char* program) {
-  std::printf(
-      "Syntax is: %s -out DIR [options]\n"
-      "Runs the evaluation protocols of EVALUATION.md and writes tables, plots, pictures and JSON.\n"
-      "The whole plan takes minutes (BENCHMARK.md); it is printed before anything runs.\n"
-      "where options are:\n"
+  char usage[600];
+  std::snprintf(usage, sizeof(usage),
+                "Syntax is: %s -out DIR [options]\n"
+                "Runs the evaluation protocols of docs/EVALUATION.md (P1: KITTI 2015 with simulated LiDAR, P2: real\n"
+                "KITTI LiDAR, P3: synthetic frames) and writes tables, plots, pictures and JSON. The whole plan\n"
+                "takes minutes (BENCHMARK.md); it is printed before anything runs.\n",
+                program);
+  const std::string inputs =
       "  -data ROOT         third-party data root (default: $LIDAR_SGM_DATA, else ../shared/data, relative to\n"
       "                     the working directory)\n"
-      "  -out DIR           output folder, required (the documented run: -out out/eval)\n"
       "  -protocols LIST    comma-separated subset of P1,P2,P3 (default: P1,P2,P3)\n"
       "  -synth_frames N    synthetic frames per P3 set (default: 10, seeds 100..)\n"
       "  -synth_size WxH    synthetic frame size (default: 1242x375)\n"
       "  -p3_sets LIST      comma-separated subset of clear64,rain64,clear128 (default: all three;\n"
-      "                     clear64 has the third camera for Triple-SGM)\n"
-      "  -alpha_step S      alpha sweep step in (0, 1] (default: 0.1)\n"
-      "  -threads N         threads in all, 0 = all hardware threads (default: 0): frames run in parallel and\n"
-      "                     each frame's matcher gets an equal share of the rest; results do not depend on it\n"
-      "  -scale 1|0.5       match the LiDAR-SGM methods at full or half resolution (0.5: the paper's fast\n"
-      "                     mode; each frame's search range is rounded up to a multiple of 32) (default: 1)\n"
-      "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n"
+      "                     clear64 has the third camera for Triple-SGM)\n";
+  const std::string outputs =
+      "  -out DIR           output folder, required (the documented run: -out out/eval)\n"
       "  -no_pictures       skip the per-frame pictures\n"
       "  -fit_confidence    instead of the protocols: fit the confidence models on synthetic frames and check\n"
-      "                     them on held-out ones (writes DIR/confidence_fit.md and DIR/reliability.png)\n"
+      "                     them on held-out ones (writes DIR/confidence_fit.md and DIR/reliability.png)\n";
+  const std::string method =
+      "  -alpha_step S      alpha sweep step in (0, 1] (default: 0.1)\n"
       "  -disparity_range lidar|fixed  the LiDAR-SGM methods' search range: from each frame's LiDAR, as the\n"
       "                     tools (default: lidar; the methods without LiDAR keep the fixed one), or fixed\n"
       "  -num_disparities N the fixed range [0, N) on every frame (alone: implies -disparity_range fixed)\n"
       "                     (default: the frame's: 128, or its GT's max + 8 px rounded up to 16 where more)\n"
       "  and every other SGM option of lidar_sgm_disparity (-sigma, -p1, -p2, -no_lr_check, ...) for the\n"
-      "  LiDAR-SGM methods, and its output-filter options (-no_sky_filter, -no_outlier_filter, -sky_texture T,\n"
-      "  -outlier_min_neighbours N) for them too\n"
-      "  -h, --help         this help\n"
-      "  --version          the tool's name and version\n"
-      "Every option also takes the GNU spelling: --out DIR, --out=DIR.\n",
-      program);
+      "  LiDAR-SGM methods\n";
+  const std::string speed =
+      "  -threads N         threads in all, 0 = all hardware threads (default: 0): frames run in parallel and\n"
+      "                     each frame's matcher gets an equal share of the rest; results do not depend on it\n"
+      "  -scale 1|0.5       match the LiDAR-SGM methods at full or half resolution (0.5: the paper's fast\n"
+      "                     mode; each frame's search range is rounded up to a multiple of 32) (default: 1)\n"
+      "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n";
+  const std::string filters =
+      "  the output-filter options of lidar_sgm_disparity (-no_sky_filter, -no_outlier_filter, -sky_texture T,\n"
+      "  -outlier_min_neighbours N), for the LiDAR-SGM methods\n";
+  const std::vector<apps::HelpExample> examples{
+      {"The documented run: every protocol, on the KITTI data in ../shared/data (minutes):",
+       "lidar_sgm_eval -out out/eval"},
+      {"P3 alone, on small synthetic frames (no third-party data needed), without pictures:",
+       "lidar_sgm_eval -out out/p3 -protocols P3 -p3_sets clear64 -synth_frames 2 -synth_size 320x96 "
+       "-alpha_step 0.5 -no_pictures"},
+      {"P1 at half scale (the paper's fast mode), on the KITTI 2015 frames in ../shared/data:",
+       "lidar_sgm_eval -out out/p1_half -protocols P1 -scale 0.5"},
+  };
+  const std::string text = apps::helpText(usage,
+                                          {{"Inputs", inputs},
+                                           {"Outputs", outputs},
+                                           {"Method", method},
+                                           {"Speed", speed},
+                                           {"Filters", filters}},
+                                          examples);
+  std::fputs(text.c_str(), stdout);
 }
 
 /// The comma-separated `option`'s items, each checked against `known` (its default).

@@ -18,6 +18,8 @@
 
 #include "atomic_file.hpp"
 #include "calibration_yaml.hpp"
+#include "lidar_sgm/io/file_access.hpp"
+#include "text_excerpt.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -68,9 +70,22 @@ double parseNumber(const Field& field, const std::string& token) {
   throw std::runtime_error("cannot read calibration '" + source + "': " + reason);
 }
 
+/// The text is not what the reader expected (another file than a KITTI calibration was given):
+/// readCalibration() adds the formats it accepts, which the format-specific readers do not know.
+class FormatError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What readCalibration() accepts, for messages about a file that is none of it.
+const char* const kAcceptedCalibrations =
+    "calibrations read: a KITTI object calib file (keys P2, P3, R0_rect, Tr_velo_to_cam); a KITTI raw date "
+    "folder (with calib_cam_to_cam.txt and calib_velo_to_cam.txt), or its calib_cam_to_cam.txt with "
+    "calib_velo_to_cam.txt beside it; a lidar_sgm YAML file (.yaml/.yml: width, height, K, baseline, T_cam_lidar)";
+
 std::ifstream openFile(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) cannotRead(path, "no such file");
+  const std::string reason = unreadableFileReason(path);
+  if (!reason.empty()) cannotRead(path, reason);
   std::ifstream in(path, std::ios::binary);  // binary: the text parsers see exactly the file's bytes
   if (!in) cannotRead(path, "cannot open the file");
   return in;
@@ -89,24 +104,22 @@ std::string readAll(std::istream& in, const std::string& source) {
 class KittiText {
  public:
   KittiText(std::istream& in, const std::string& source) : source_(source) {
-    std::string text;
-    for (int number = 1; std::getline(in, text); ++number) {
-      // A binary file given as the calibration (a scan, an image) is named as such, wherever its
-      // first NUL byte is, rather than by its first line, and its bytes are kept out of the message.
-      if (text.find('\0') != std::string::npos) {
-        throw std::runtime_error(source_ + ":" + std::to_string(number) +
-                                 ": binary data (a NUL byte), not a calibration text of 'KEY: values' lines");
-      }
-      if (malformed_.empty()) addLine(number, text);
+    const std::string all = readAll(in, source);
+    // A scan or an image given as the calibration: say so, and never echo its bytes.
+    if (detail::looksBinary(std::string_view(all).substr(0, 4096))) {
+      throw FormatError("cannot read calibration '" + source + "': the file looks binary (" +
+                        std::to_string(all.size()) + " bytes, starting '" + detail::printableExcerpt(all, 16) +
+                        "'), not a KITTI calibration text");
     }
-    if (in.bad()) cannotRead(source, "read error");
-    if (!malformed_.empty()) throw std::runtime_error(malformed_);
+    std::istringstream lines(all);
+    std::string text;
+    for (int number = 1; std::getline(lines, text); ++number) addLine(number, text);
   }
 
   /// The numbers of `key`, exactly `count` of them.
   Field numbers(const std::string& key, std::size_t count) const {
     const auto found = lines_.find(key);
-    if (found == lines_.end()) throw std::runtime_error(source_ + ": missing key '" + key + "'");
+    if (found == lines_.end()) throw FormatError(source_ + ": missing key '" + key + "'" + describeKeys());
     const std::vector<Line>& occurrences = found->second;
     Field field{source_, key, occurrences.front().number, {}};
     // Two values for one key: which one the author meant is a guess we do not make.
@@ -125,20 +138,46 @@ class KittiText {
     std::string text;
   };
 
+  /// " (the text has keys A, B, C)" and, where they are another KITTI file's, which one it is.
+  std::string describeKeys() const {
+    if (lines_.empty()) return " (the text has no 'KEY: values' line)";
+    std::string keys;
+    std::size_t listed = 0;
+    for (const auto& entry : lines_) {
+      if (++listed > 12) {
+        keys += ", ...";
+        break;
+      }
+      keys += (keys.empty() ? "" : ", ") + detail::printableExcerpt(entry.first, 24);
+    }
+    const auto has = [&](const char* key) { return lines_.count(key) > 0; };
+    std::string hint;
+    if (has("R") && has("T") && !has("P2") && !has("P_rect_02")) {
+      hint = "; this looks like KITTI raw's calib_velo_to_cam.txt: give its date folder, or the "
+             "calib_cam_to_cam.txt beside it";
+    } else if (has("P_rect_02")) {
+      hint = "; this looks like KITTI raw's calib_cam_to_cam.txt: give its date folder, or the file under that "
+             "name with calib_velo_to_cam.txt beside it";
+    } else if (has("Tr") && has("P2") && !has("Tr_velo_to_cam")) {
+      hint = "; this looks like a KITTI odometry calib.txt (Tr instead of Tr_velo_to_cam and R0_rect): "
+             "lidar_sgm_batch reads odometry sequences";
+    }
+    return " (the text has keys " + keys + ")" + hint;
+  }
+
   void addLine(int number, std::string text) {
     if (!text.empty() && text.back() == '\r') text.pop_back();  // files saved with CRLF
     if (trim(text).empty()) return;
     const std::size_t colon = text.find(':');
     if (colon == std::string::npos) {
-      malformed_ = source_ + ":" + std::to_string(number) + ": expected 'KEY: values', got '" + text + "'";
-      return;
+      throw FormatError(source_ + ":" + std::to_string(number) + ": expected 'KEY: values', got '" +
+                        detail::printableExcerpt(text, 60) + "'");
     }
     lines_[trim(text.substr(0, colon))].push_back({number, text.substr(colon + 1)});
   }
 
   std::string source_;
   std::map<std::string, std::vector<Line>> lines_;
-  std::string malformed_;  ///< the message for the first line that is no "KEY: values", if any
 };
 
 Matrix34 rowMajor3x4(const Field& field) {
@@ -243,15 +282,6 @@ int imageSide(const Field& field, double value) {
   return static_cast<int>(value);
 }
 
-/// The R (row-major 3x3) and T of a KITTI raw sensor-to-sensor file, as one rigid transform.
-Eigen::Matrix4d rigidOfRAndT(const KittiText& text) {
-  const Field rotation = text.numbers("R", 9);
-  const Field translation = text.numbers("T", 3);
-  const Eigen::Matrix3d R = rowMajor3x3(rotation);
-  requireRotation(rotation, R);
-  return rigid(R, Eigen::Vector3d(translation.values[0], translation.values[1], translation.values[2]));
-}
-
 // --- YAML: written by cv::FileStorage, read by calibration_yaml.cpp -----------------------
 
 template <typename Derived>
@@ -316,8 +346,13 @@ StereoCalibration readKittiRawCalibration(std::istream& camToCam, const std::str
   const Field p3 = camToCamText.numbers("P_rect_03", 12);
   const Field r0 = camToCamText.numbers("R_rect_00", 9);  // rectifies camera 0, the reference of P_rect_0x
   const Field size = camToCamText.numbers("S_rect_02", 2);
+  const Field rotation = veloToCamText.numbers("R", 9);
+  const Field translation = veloToCamText.numbers("T", 3);
+  const Eigen::Matrix3d R = rowMajor3x3(rotation);
+  requireRotation(rotation, R);
+  const Eigen::Vector3d t(translation.values[0], translation.values[1], translation.values[2]);
 
-  StereoCalibration calibration = composeKitti(p2, p3, r0, rigidOfRAndT(veloToCamText));
+  StereoCalibration calibration = composeKitti(p2, p3, r0, rigid(R, t));
   calibration.width = imageSide(size, size.values[0]);
   calibration.height = imageSide(size, size.values[1]);
   validateFromSource(calibration, "from '" + camToCamSource + "' and '" + veloToCamSource + "'");
@@ -337,17 +372,6 @@ StereoCalibration readKittiRawCalibration(const std::string& camToCamPath, const
   std::ifstream camToCam = openFile(camToCamPath);
   std::ifstream veloToCam = openFile(veloToCamPath);
   return readKittiRawCalibration(camToCam, camToCamPath, veloToCam, veloToCamPath);
-}
-
-Eigen::Isometry3d readKittiRawRigidTransform(std::istream& in, const std::string& source) {
-  Eigen::Isometry3d transform;
-  transform.matrix() = rigidOfRAndT(KittiText(in, source));
-  return transform;
-}
-
-Eigen::Isometry3d readKittiRawRigidTransform(const std::string& path) {
-  std::ifstream in = openFile(path);
-  return readKittiRawRigidTransform(in, path);
 }
 
 StereoCalibration readCalibrationYamlFromString(const std::string& text, const std::string& source) {
@@ -401,15 +425,25 @@ void writeCalibrationYaml(const std::string& path, const StereoCalibration& cali
 
 StereoCalibration readCalibration(const std::string& path, int width, int height) {
   const fs::path p(path);
-  if (hasYamlExtension(p)) return readCalibrationYaml(path);
-  std::error_code ec;
-  if (fs::is_directory(p, ec)) {
-    return readKittiRawCalibration((p / "calib_cam_to_cam.txt").string(), (p / "calib_velo_to_cam.txt").string());
+  try {
+    if (hasYamlExtension(p)) return readCalibrationYaml(path);
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) {
+      const fs::path camToCam = p / "calib_cam_to_cam.txt";
+      if (!fs::exists(camToCam, ec)) {
+        throw FormatError("cannot read calibration '" + path +
+                          "': it is a directory without calib_cam_to_cam.txt, not a KITTI raw date folder");
+      }
+      return readKittiRawCalibration(camToCam.string(), (p / "calib_velo_to_cam.txt").string());
+    }
+    if (p.filename() == "calib_cam_to_cam.txt") {
+      return readKittiRawCalibration(path, (p.parent_path() / "calib_velo_to_cam.txt").string());
+    }
+    return readKittiCalibration(path, width, height);
+  } catch (const FormatError& e) {
+    // The file is none of the formats: say which ones there are.
+    throw std::runtime_error(std::string(e.what()) + ". " + kAcceptedCalibrations);
   }
-  if (p.filename() == "calib_cam_to_cam.txt") {
-    return readKittiRawCalibration(path, (p.parent_path() / "calib_velo_to_cam.txt").string());
-  }
-  return readKittiCalibration(path, width, height);
 }
 
 }  // namespace io

@@ -19,6 +19,7 @@
 
 #include "atomic_file.hpp"
 #include "binary_pcd_writer.hpp"
+#include "lidar_sgm/io/file_access.hpp"
 #include "pcd_reader.hpp"
 #include "ply_reader.hpp"
 #include "text_values.hpp"
@@ -46,9 +47,8 @@ std::string lowerExtension(const std::string& path) {
 }
 
 void requireRegularFile(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) failRead(path, "no such file");
-  if (!fs::is_regular_file(path, ec)) failRead(path, "not a regular file");
+  const std::string unreadable = unreadableFileReason(path);
+  if (!unreadable.empty()) failRead(path, unreadable);
 }
 
 bool finiteXyz(const pcl::PointXYZI& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }

@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "atomic_file.hpp"
+#include "lidar_sgm/io/file_access.hpp"
 #include <unistd.h>
 
 static_assert(lidar_sgm::io::kMaxImageSide == lidar_sgm::geometry::StereoCalibration::kMaxImageSide,
@@ -73,8 +74,8 @@ void requireImageSignature(const std::string& path) {
 }
 
 cv::Mat readAny(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw std::runtime_error("cannot read image '" + path + "': no such file");
+  const std::string unreadable = unreadableFileReason(path);
+  if (!unreadable.empty()) throw std::runtime_error("cannot read image '" + path + "': " + unreadable);
   requireImageSignature(path);
   requirePngSizeWithinLimit(path);
   cv::Mat image;

@@ -61,25 +61,34 @@ build_downstream() {
   "$cmake_command" --build "$work/build-$name" -j2
 }
 
-step "core user: find_package(lidar_sgm COMPONENTS core) with Eigen, OpenCV and PCL hidden"
-# The core component must not look for any of them (the GPU machine has none).
-build_downstream core_user -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON \
-  -DCMAKE_DISABLE_FIND_PACKAGE_PCL=ON
+step "core user: find_package(lidar_sgm COMPONENTS core) with Eigen, OpenCV, PCL and the CUDA toolkit hidden"
+# The core component must not look for any of them (the GPU machine has none of the first three; a
+# CPU-only user need not have CUDA, even when the core was built with the cuda backend): no nvcc on
+# PATH, no toolkit where CUDAToolkit_ROOT points, and find_package(CUDAToolkit) disabled.
+no_cuda_path="$(printf '%s' "$PATH" | tr ':' '\n' | grep -v -i cuda | paste -sd: -)"
+PATH="$no_cuda_path" CUDACXX='' CUDA_PATH='' build_downstream core_user -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_OpenCV=ON -DCMAKE_DISABLE_FIND_PACKAGE_PCL=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_CUDAToolkit=ON -DCUDAToolkit_ROOT="$work/no-cuda-here"
 "$work/build-core_user/core_user"
 
-step "core user again, compiled with pkg-config (lidar_sgm.pc)"
+step "core user again, compiled with a plain pkg-config --cflags --libs (lidar_sgm.pc)"
 pc_file="$(find "$prefix" -name lidar_sgm.pc | head -n 1)"
 [ -n "$pc_file" ] || { echo "FAILED: lidar_sgm.pc is not installed" >&2; exit 1; }
 export PKG_CONFIG_PATH="$(dirname "$pc_file")"
-static=""
-if find "$prefix" -name 'liblidar_sgm_core.a' | grep -q .; then static="--static"; fi
 version="$(pkg-config --modversion lidar_sgm)"
 # A shared core in a prefix the loader does not search: found through the libdir pkg-config names.
 libdir="$(pkg-config --variable=libdir lidar_sgm)"
+# What the installed libraries need, static or shared, is in Libs/Requires: no --static needed.
 # shellcheck disable=SC2046  # pkg-config's output is a list of flags
 "$cxx" -std=c++17 -O1 -DEXPECTED_VERSION="\"$version\"" $(pkg-config --cflags lidar_sgm) \
-  "$here/core_user/main.cpp" -o "$work/core_user_pkgconfig" $(pkg-config $static --libs lidar_sgm) -Wl,-rpath,"$libdir"
+  "$here/core_user/main.cpp" -o "$work/core_user_pkgconfig" $(pkg-config --libs lidar_sgm) -Wl,-rpath,"$libdir"
 "$work/core_user_pkgconfig"
+# --static must link too (it adds the .private fields, if any).
+# shellcheck disable=SC2046
+"$cxx" -std=c++17 -O1 -DEXPECTED_VERSION="\"$version\"" $(pkg-config --cflags lidar_sgm) \
+  "$here/core_user/main.cpp" -o "$work/core_user_pkgconfig_static" $(pkg-config --static --libs lidar_sgm) \
+  -Wl,-rpath,"$libdir"
+"$work/core_user_pkgconfig_static"
 
 step "a component that does not exist is reported not found"
 mkdir -p "$work/bogus"

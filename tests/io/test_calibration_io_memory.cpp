@@ -123,9 +123,9 @@ TEST_F(CalibrationMemory, KittiObjectErrorsNameTheCallersLabelLineAndKey) {
   expectErrorContaining([&] { io::readKittiCalibrationFromString("P2 700 0\n"); },
                         {"<string>:1: expected 'KEY: values'"});
   // Binary data (a scan or an image given as the calibration) is named as such, even when its
-  // first NUL byte comes after a line that is no "KEY: values" (a PNG's "\x89PNG" line).
+  // first line would pass for text (a PNG's "\x89PNG" line), and its bytes are not echoed.
   expectErrorContaining([&] { io::readKittiCalibrationFromString(std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16), "image"); },
-                        {"image:3: binary data (a NUL byte)"});
+                        {"cannot read calibration 'image'", "looks binary"});
   // validate() failures name the source too.
   expectErrorContaining([&] { io::readKittiCalibrationFromString(kObjectText, "mem", -5, 10); },
                         {"invalid calibration 'mem'", "size"});

@@ -409,6 +409,14 @@ TEST_F(CloudIo, MissingFilesThrowNoSuchFile) {
   expectError([&] { io::readKittiBin(path("none.bin")); }, path("none.bin"), "no such file");
 }
 
+TEST_F(CloudIo, DirectoryIsCalledADirectory) {
+  // A folder named like a scan (velodyne/ given for a file, or a .bin folder).
+  for (const char* name : {"scan.bin", "scan.pcd", "scan.ply"}) {
+    fs::create_directories(path(name));
+    expectError([&] { io::readCloud(path(name)); }, path(name), "it is a directory, not a file");
+  }
+}
+
 TEST_F(CloudIo, EmptyAndGarbageFilesThrow) {
   writeText("empty.pcd", "");
   writeText("empty.ply", "");

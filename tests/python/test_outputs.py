@@ -103,7 +103,7 @@ def test_read_calibration_names_a_binary_file(tmp_path):
     for path in (sample_path("velodyne", "bin"), sample_path("image_2")):
         with pytest.raises(OSError) as error:
             lidar_sgm.read_calibration(path)
-        assert path in str(error.value) and "binary data" in str(error.value), str(error.value)
+        assert path in str(error.value) and "looks binary" in str(error.value), str(error.value)
 
 
 def test_error_messages_keep_bytes_that_are_not_utf8(tmp_path):

@@ -1,7 +1,7 @@
 #pragma once
 /// @file cloud_metrics.hpp  The output scored as a cloud (Tanks and Temples / ETH3D style
 /// precision, completeness, F-score) and as a depth map (KITTI depth completion's RMSE, MAE,
-/// iRMSE, iMAE); see EVALUATION.md, "Scoring the cloud". Both work on depth z = f*b/d, from the
+/// iRMSE, iMAE); see docs/EVALUATION.md, "Metrics". Both work on depth z = f*b/d, from the
 /// method's disparity and the GT disparity, so no point cloud has to be built.
 
 #include <cstdint>

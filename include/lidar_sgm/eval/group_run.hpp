@@ -32,7 +32,7 @@ struct GroupRunOptions {
   Parameters base;             ///< the LiDAR-SGM methods' parameters (alpha and numDisparities are set per run)
   Backend backend = Backend::Auto;
   /// The LiDAR-SGM methods' search range: from each frame's LiDAR (the tools' default) or fixed:
-  /// the frame's numDisparities (the protocol's, from its GT: EVALUATION.md) or a given one.
+  /// the frame's numDisparities (the protocol's, from its GT: docs/EVALUATION.md) or a given one.
   RangeChoice range;
   OutputFilterOptions filters;  ///< the Densifier's sky and outlier filters for the LiDAR-SGM methods
   double minConfidence = kDefaultMinConfidence;  ///< the Densifier's minimum confidence (core/confidence.hpp)

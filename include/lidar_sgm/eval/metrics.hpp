@@ -1,5 +1,5 @@
 #pragma once
-/// @file metrics.hpp  The paper's and KITTI's disparity metrics (see docs in EVALUATION.md).
+/// @file metrics.hpp  The paper's and KITTI's disparity metrics (docs/EVALUATION.md).
 
 #include <cstdint>
 
