@@ -282,6 +282,15 @@ int imageSide(const Field& field, double value) {
   return static_cast<int>(value);
 }
 
+/// The R (row-major 3x3) and T of a KITTI raw sensor-to-sensor file, as one rigid transform.
+Eigen::Matrix4d rigidOfRAndT(const KittiText& text) {
+  const Field rotation = text.numbers("R", 9);
+  const Field translation = text.numbers("T", 3);
+  const Eigen::Matrix3d R = rowMajor3x3(rotation);
+  requireRotation(rotation, R);
+  return rigid(R, Eigen::Vector3d(translation.values[0], translation.values[1], translation.values[2]));
+}
+
 // --- YAML: written by cv::FileStorage, read by calibration_yaml.cpp -----------------------
 
 template <typename Derived>
@@ -346,13 +355,8 @@ StereoCalibration readKittiRawCalibration(std::istream& camToCam, const std::str
   const Field p3 = camToCamText.numbers("P_rect_03", 12);
   const Field r0 = camToCamText.numbers("R_rect_00", 9);  // rectifies camera 0, the reference of P_rect_0x
   const Field size = camToCamText.numbers("S_rect_02", 2);
-  const Field rotation = veloToCamText.numbers("R", 9);
-  const Field translation = veloToCamText.numbers("T", 3);
-  const Eigen::Matrix3d R = rowMajor3x3(rotation);
-  requireRotation(rotation, R);
-  const Eigen::Vector3d t(translation.values[0], translation.values[1], translation.values[2]);
 
-  StereoCalibration calibration = composeKitti(p2, p3, r0, rigid(R, t));
+  StereoCalibration calibration = composeKitti(p2, p3, r0, rigidOfRAndT(veloToCamText));
   calibration.width = imageSide(size, size.values[0]);
   calibration.height = imageSide(size, size.values[1]);
   validateFromSource(calibration, "from '" + camToCamSource + "' and '" + veloToCamSource + "'");
@@ -372,6 +376,17 @@ StereoCalibration readKittiRawCalibration(const std::string& camToCamPath, const
   std::ifstream camToCam = openFile(camToCamPath);
   std::ifstream veloToCam = openFile(veloToCamPath);
   return readKittiRawCalibration(camToCam, camToCamPath, veloToCam, veloToCamPath);
+}
+
+Eigen::Isometry3d readKittiRawRigidTransform(std::istream& in, const std::string& source) {
+  Eigen::Isometry3d transform;
+  transform.matrix() = rigidOfRAndT(KittiText(in, source));
+  return transform;
+}
+
+Eigen::Isometry3d readKittiRawRigidTransform(const std::string& path) {
+  std::ifstream in = openFile(path);
+  return readKittiRawRigidTransform(in, path);
 }
 
 StereoCalibration readCalibrationYamlFromString(const std::string& text, const std::string& source) {

@@ -1,5 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -231,6 +238,18 @@ TEST(ConfidenceReport, MediansPerMethodWithAConfidence) {
   EXPECT_EQ(json["methods"][0]["method"], "fused_sgm");
   EXPECT_EQ(json["methods"][0]["curve"].size(), eval::confidenceThresholds().size());
   EXPECT_DOUBLE_EQ(json["methods"][0]["sparsification"]["auc_gap"].get<double>(), 0.0);
+  // The plot: two panels, drawn (not one color), written whole.
+  const std::string plot = (std::filesystem::temp_directory_path() /
+                            ("lidar_sgm_confidence_plot_" + std::to_string(::getpid()) + ".png")).string();
+  ASSERT_TRUE(eval::writeConfidencePlot(result, plot));
+  const cv::Mat picture = cv::imread(plot, cv::IMREAD_GRAYSCALE);
+  std::filesystem::remove(plot);
+  ASSERT_FALSE(picture.empty());
+  EXPECT_GT(picture.cols, picture.rows) << "two panels side by side";
+  double low = 0.0;
+  double high = 0.0;
+  cv::minMaxLoc(picture, &low, &high);
+  EXPECT_LT(low, high);
 
   eval::ProtocolResult baselines;
   baselines.frames = {{"set", "a", {baseline}}};
