@@ -99,7 +99,7 @@ bool sameBytes(const pcl::PointCloud<PointOut>& a, const pcl::PointCloud<PointOu
   return true;
 }
 
-TEST(SGMDensificationFrames, AReusedObjectGivesEveryFrameAFreshObjectsCloudInEveryOrder) {
+TEST(SGMDensificationFrames, AReusedObjectGivesEveryFrameAFreshObjectsCloudAfterEveryOtherFrame) {
   const std::vector<FrameInputs> inputs = frames();
   std::vector<pcl::PointCloud<PointOut>> fresh;
   for (const FrameInputs& frame : inputs) {
@@ -112,29 +112,28 @@ TEST(SGMDensificationFrames, AReusedObjectGivesEveryFrameAFreshObjectsCloudInEve
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     for (std::size_t j = i + 1; j < fresh.size(); ++j) EXPECT_FALSE(sameBytes(fresh[i], fresh[j])) << i << " " << j;
   }
-  std::vector<int> order{0, 1, 2, 3};
-  int runs = 0;
-  do {
-    for (const bool imagesFirst : {false, true}) {
-      Densification sgm;
+  // Every frame after every other one: the 12 ordered pairs of the 4 frames, in one sequence.
+  const std::vector<int> sequence{0, 1, 2, 3, 0, 2, 1, 3, 2, 0, 3, 1, 0};
+  for (const bool imagesFirst : {false, true}) {
+    Densification sgm;
     configure(sgm);
-      // Every frame twice in a row (a parameter sweep keeps the frame), then the next.
-      for (const int f : order) {
-        for (int again = 0; again < 2; ++again) {
-          const pcl::PointCloud<PointOut> out = again == 0 ? densify(sgm, inputs[f], imagesFirst) : [&] {
-            pcl::PointCloud<PointOut> o;
-            sgm.filter(o);
-            return o;
-          }();
-          EXPECT_TRUE(sameBytes(out, fresh[f])) << inputs[f].name << " after frames " << order[0] << order[1]
-                                                << order[2] << order[3] << (imagesFirst ? ", images first" : "")
-                                                << (again ? ", filtered again" : "");
+    int previous = -1;
+    for (const int f : sequence) {
+      // Each frame twice: a parameter sweep's filter() again keeps the frame.
+      for (int again = 0; again < 2; ++again) {
+        pcl::PointCloud<PointOut> out;
+        if (again == 0) {
+          out = densify(sgm, inputs[f], imagesFirst);
+        } else {
+          sgm.filter(out);
         }
+        EXPECT_TRUE(sameBytes(out, fresh[f])) << inputs[f].name << " after " << (previous < 0 ? "nothing" : inputs[previous].name)
+                                              << (imagesFirst ? ", images given before the scan" : "")
+                                              << (again ? ", filtered again" : "");
       }
-      ++runs;
+      previous = f;
     }
-  } while (std::next_permutation(order.begin(), order.end()));
-  EXPECT_EQ(runs, 48);
+  }
 }
 
 TEST(SGMDensificationFrames, ClearingThePairOrGivingItAgainIsTheFramesOwnChoice) {
