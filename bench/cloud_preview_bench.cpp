@@ -4,8 +4,6 @@
 //   cloud_preview_bench CLOUD.pcd [-runs N]
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,21 +13,13 @@
 
 #include "common/arguments.hpp"
 #include "common/tool_main.hpp"
+#include "thread_cpu.hpp"
 #include "lidar_sgm/io/cloud_preview.hpp"
 
 namespace {
 
-double threadCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
-double medianOf(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
+using lidar_sgm::bench::medianOf;
+using lidar_sgm::bench::threadCpuMs;
 
 int run(int argc, char** argv) {
   const lidar_sgm::apps::Arguments args(argc, argv, {"runs"}, {});

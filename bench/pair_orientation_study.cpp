@@ -4,8 +4,6 @@
 // calibration: ../shared/data/kitti2015_lidar), both orientations, both witnesses (the LiDAR
 // points, the pair alone over [0, 128)): the votes, the verdict and the median time of -runs calls.
 //   pair_orientation_study DIR [-runs N]
-#include <time.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +13,7 @@
 
 #include "common/arguments.hpp"
 #include "common/tool_main.hpp"
+#include "thread_cpu.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
@@ -26,16 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 using lidar_sgm::PairOrientation;
 
-double threadCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
-double medianOf(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+using lidar_sgm::bench::medianOf;
+using lidar_sgm::bench::threadCpuMs;
 
 /// The share of the tested patches that voted `wins`, in percent.
 double share(std::size_t wins, const PairOrientation& v) {

@@ -37,9 +37,8 @@ double patchMean(const Gray& image, int x, int y) {
   return static_cast<double>(sum) / ((2 * kRadius + 1) * (2 * kRadius + 1));
 }
 
-/// Mean absolute deviation of the patch around (x, y) from its mean: its texture.
-double patchTexture(const Gray& image, int x, int y) {
-  const double mean = patchMean(image, x, y);
+/// Mean absolute deviation of the patch around (x, y) from its `mean`: its texture.
+double patchTexture(const Gray& image, int x, int y, double mean) {
   double sum = 0.0;
   for (int j = -kRadius; j <= kRadius; ++j) {
     for (int i = -kRadius; i <= kRadius; ++i) sum += std::abs(image.at(x + i, y + j) - mean);
@@ -47,10 +46,9 @@ double patchTexture(const Gray& image, int x, int y) {
   return sum / ((2 * kRadius + 1) * (2 * kRadius + 1));
 }
 
-/// Zero-mean SAD of the left patch at (x, y) and the right one at (xr, y): robust to the gain
-/// and offset two cameras' exposures differ by.
-double zsad(const Gray& left, const Gray& right, int x, int xr, int y) {
-  const double ml = patchMean(left, x, y);
+/// Zero-mean SAD of the left patch at (x, y), of mean `ml`, and the right one at (xr, y): robust
+/// to the gain and offset two cameras' exposures differ by.
+double zsad(const Gray& left, double ml, const Gray& right, int x, int xr, int y) {
   const double mr = patchMean(right, xr, y);
   double sum = 0.0;
   for (int j = -kRadius; j <= kRadius; ++j) {
@@ -99,8 +97,9 @@ PairOrientation pairOrientationFromLidar(const GrayImageView& leftView, const Gr
     const LidarSample& s = lidar[k];
     const int d = (s.disparity16 + 8) / 16;
     if (d < 3 || !inside(left, s.x, s.y) || !inside(right, s.x - d, s.y) || !inside(right, s.x + d, s.y)) continue;
-    if (patchTexture(left, s.x, s.y) < left.flatness()) continue;
-    vote(votes, zsad(left, right, s.x, s.x - d, s.y), zsad(left, right, s.x, s.x + d, s.y));
+    const double mean = patchMean(left, s.x, s.y);
+    if (patchTexture(left, s.x, s.y, mean) < left.flatness()) continue;
+    vote(votes, zsad(left, mean, right, s.x, s.x - d, s.y), zsad(left, mean, right, s.x, s.x + d, s.y));
   }
   return votes;
 }
@@ -147,8 +146,9 @@ PairOrientation pairOrientationFromStereo(const GrayImageView& leftView, const G
       return sad;
     };
     for (int x = std::max(kRadius, stepX / 2); x < width - kRadius; x += stepX) {
-      if (patchTexture(left, x, y) < left.flatness()) continue;
-      const float mean = static_cast<float>(patchMean(left, x, y));
+      const double leftMean = patchMean(left, x, y);
+      if (patchTexture(left, x, y, leftMean) < left.flatness()) continue;
+      const float mean = static_cast<float>(leftMean);
       for (int j = 0; j < kSide; ++j) {
         for (int i = 0; i < kSide; ++i) {
           patch[static_cast<std::size_t>(j * kSide + i)] =

@@ -319,6 +319,7 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   bool pairGivenSinceFilter_ = false;
   bool colorGivenSinceFilter_ = false;
   bool filteredSinceCloud_ = false;  ///< filter() ran since the last setInputCloud()
+  bool colorChanged_ = false;        ///< the color to hand to the densifier changed since the last filter()
 };
 
 }  // namespace lidar_sgm

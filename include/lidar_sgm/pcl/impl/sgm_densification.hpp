@@ -61,10 +61,12 @@ void SGMDensification<PointInT, PointOutT>::setInputCloud(const typename PointCl
     if (!pairGivenSinceFilter_) {
       densifier_.clearStereoPair();
       pairColor_ = Image<Rgb8>();
+      colorChanged_ = true;
       pairError_.clear();
     }
     if (!colorGivenSinceFilter_) {
       explicitColor_ = Image<Rgb8>();
+      colorChanged_ = true;
       colorError_.clear();
     }
     filteredSinceCloud_ = false;
@@ -76,6 +78,7 @@ template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::setStereoPair(const ImageCloud& left, const ImageCloud& right) {
   pairGivenSinceFilter_ = true;
   pairColor_ = Image<Rgb8>();
+  colorChanged_ = true;
   // Invalid images are remembered as an error for filter() (PCL setters do not throw).
   if (!detail::isOrganizedImage(left) || !detail::isOrganizedImage(right)) {
     densifier_.clearStereoPair();
@@ -100,6 +103,7 @@ void SGMDensification<PointInT, PointOutT>::setStereoPair(const GrayImageView& l
   pairGivenSinceFilter_ = true;
   // A gray pair colors through the densifier's gray fallback unless a color image is set.
   pairColor_ = Image<Rgb8>();
+  colorChanged_ = true;
   try {
     densifier_.setStereoPair(left, right);
     pairError_.clear();
@@ -114,6 +118,7 @@ void SGMDensification<PointInT, PointOutT>::clearStereoPair() {
   pairGivenSinceFilter_ = true;
   densifier_.clearStereoPair();
   pairColor_ = Image<Rgb8>();
+  colorChanged_ = true;
   pairError_.clear();
 }
 
@@ -121,6 +126,7 @@ template <typename PointInT, typename PointOutT>
 void SGMDensification<PointInT, PointOutT>::setColorImage(const ImageCloud& image) {
   colorGivenSinceFilter_ = true;
   explicitColor_ = Image<Rgb8>();
+  colorChanged_ = true;
   if (!detail::isOrganizedImage(image)) {
     colorError_ = "setColorImage: the image must be an organized cloud (width x height, height > 1)";
     return;
@@ -135,8 +141,12 @@ void SGMDensification<PointInT, PointOutT>::useFrameImages() {
   pairGivenSinceFilter_ = false;
   colorGivenSinceFilter_ = false;
   filteredSinceCloud_ = true;
-  const Image<Rgb8>& color = explicitColor_.empty() ? pairColor_ : explicitColor_;
-  densifier_.setColorImage(std::as_const(color).view());  // empty: the pair's gray, or none
+  // Handed over (a copy) only when it changed: a parameter sweep's frames do not copy it again.
+  if (colorChanged_) {
+    const Image<Rgb8>& color = explicitColor_.empty() ? pairColor_ : explicitColor_;
+    densifier_.setColorImage(std::as_const(color).view());  // empty: the pair's gray, or none
+    colorChanged_ = false;
+  }
 }
 
 template <typename PointInT, typename PointOutT>
