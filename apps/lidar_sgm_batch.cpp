@@ -22,6 +22,7 @@
 #include "batch/frame_list.hpp"
 #include "batch/frame_runner.hpp"
 #include "batch/manifest.hpp"
+#include "batch/output_lock.hpp"
 #include "batch/output_state.hpp"
 #include "batch/progress.hpp"
 #include "batch/sequence_map.hpp"
@@ -33,6 +34,7 @@
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "densify/densify_options.hpp"
+#include "lidar_sgm/io/output_transaction.hpp"
 
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
@@ -187,6 +189,8 @@ int run(int argc, char** argv) {
     std::printf("Poses: %s\n", map->posesSource().c_str());
   }
   fs::create_directories(outDir);
+  // Before anything in the folder is read or changed: one run per folder and shard.
+  const lidar_sgm::apps::OutputFolderLock lock(outDir, shard);
   // The options that make a cloud's bytes: the method's and the output's, not how the run is
   // spread (-threads, -backend: every backend gives the same bytes).
   std::set<std::string> cloudOptions = joined(lidar_sgm::apps::densifyValueOptions(), lidar_sgm::apps::densifyFlagOptions());
@@ -197,7 +201,11 @@ int run(int argc, char** argv) {
       outDir, lidar_sgm::apps::cloudOptionsText(args, cloudOptions, extension), args.has("overwrite"));
   std::vector<std::string> outPaths;
   for (const Frame& frame : frames) outPaths.push_back((fs::path(outDir) / (frame.name + "." + extension)).string());
-  const std::size_t stale = lidar_sgm::apps::removeStaleTemporaries(outPaths);
+  std::size_t stale = lidar_sgm::apps::removeStaleTemporaries(outPaths);
+  if (map) {
+    stale += lidar_sgm::io::removeDeadRunTemporaries(mapOptions.mapPath) +
+             lidar_sgm::io::removeDeadRunTemporaries(mapOptions.picturePath);
+  }
   const std::string manifestName =
       shard.count == 1 ? "manifest.jsonl"
                        : "manifest.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".jsonl";
@@ -215,8 +223,10 @@ int run(int argc, char** argv) {
   installStopHandlers();
   const lidar_sgm::apps::Timer runTimer;
   std::vector<std::unique_ptr<lidar_sgm::apps::FrameDensifier>> densifiers;
+  // From the whole sequence, not the shard: every shard checks its frames against the same size.
+  const std::map<std::string, lidar_sgm::apps::CalibrationImage> shared = lidar_sgm::apps::sharedCalibrationImages(all);
   for (int j = 0; j < jobs; ++j) {
-    densifiers.push_back(std::make_unique<lidar_sgm::apps::FrameDensifier>(args, width, height, threads));
+    densifiers.push_back(std::make_unique<lidar_sgm::apps::FrameDensifier>(args, width, height, threads, shared));
   }
   const bool overwrite = args.has("overwrite");
 
@@ -229,7 +239,11 @@ int run(int argc, char** argv) {
     const std::string& outPath = outPaths[index];
     try {
       if (!overwrite && fs::exists(outPath)) {
-        return lidar_sgm::apps::skippedFrameRecord(frame.name, fs::file_size(outPath), earlierRecords);
+        // Only a whole cloud counts as done: one cut short (a full disk) is made again.
+        record.redone = lidar_sgm::apps::untrustedCloudReason(outPath, earlierRecords, frame.name);
+        if (record.redone.empty()) {
+          return lidar_sgm::apps::skippedFrameRecord(frame.name, fs::file_size(outPath), earlierRecords);
+        }
       }
       for (const std::string& input : {frame.scan, frame.left, frame.right, frame.calib}) {
         if (!input.empty() && lidar_sgm::apps::samePath(outPath, input)) {
@@ -267,8 +281,9 @@ int run(int argc, char** argv) {
       summed.match += record.ms.match;
       summed.reproject += record.ms.reproject;
       summed.save += record.ms.save;
-      std::printf("%s ok [%.0f ms : %zu points, %.2f MB]\n", record.frame.c_str(), record.ms.total(), record.points,
-                  static_cast<double>(record.bytes) / 1e6);
+      std::printf("%s ok [%.0f ms : %zu points, %.2f MB]%s\n", record.frame.c_str(), record.ms.total(), record.points,
+                  static_cast<double>(record.bytes) / 1e6,
+                  record.redone.empty() ? "" : (" (redone: the earlier cloud " + record.redone + ")").c_str());
     } else if (record.status == "skipped") {
       ++counts.skipped;
       std::printf("%s skipped\n", record.frame.c_str());
@@ -286,7 +301,10 @@ int run(int argc, char** argv) {
   progress.finish();
 
   const double seconds = runTimer.elapsedMs() / 1000.0;
-  const lidar_sgm::apps::MapResult mapResult = map && stopSignal == 0 ? map->build() : lidar_sgm::apps::MapResult{};
+  // A signal during the map's build stops it before anything is written; one during the write
+  // lets the map and its picture be finished (they are reported as written).
+  const lidar_sgm::apps::MapResult mapResult =
+      map && stopSignal == 0 ? map->build([] { return stopSignal != 0; }) : lidar_sgm::apps::MapResult{};
   std::printf("Summary: %zu/%zu frames: %zu ok, %zu skipped, %zu failed", counts.done(), frames.size(), counts.ok,
               counts.skipped, counts.failed);
   if (stopSignal != 0) std::printf(", %zu not run (stopped by signal %d)", frames.size() - counts.done(), int{stopSignal});
@@ -300,7 +318,9 @@ int run(int argc, char** argv) {
                 summed.reproject / n, summed.save / n);
   }
   std::printf("Manifest: %s\n", manifest.path().c_str());
-  if (map && stopSignal != 0) std::printf("Map not built: the run was stopped; run again to finish it\n");
+  if (map && stopSignal != 0 && !mapResult.written) {
+    std::printf("Map not built: the run was stopped; run again to finish it\n");
+  }
   if (!mapResult.summary.empty()) std::printf("%s\n", mapResult.summary.c_str());
   if (stopSignal != 0) return 128 + stopSignal;
   return counts.failed == 0 && mapResult.ok ? 0 : 1;

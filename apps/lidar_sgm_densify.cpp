@@ -14,7 +14,7 @@
 #include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
-#include "common/output_transaction.hpp"
+#include "lidar_sgm/io/output_transaction.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "densify/densify_options.hpp"
@@ -164,7 +164,7 @@ std::size_t validPixels(const lidar_sgm::Image<std::int16_t>& disparity) {
 template <typename PointOutT>
 int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan,
             const lidar_sgm::geometry::StereoCalibration& calibration, const cv::Mat& left, const cv::Mat& right,
-            lidar_sgm::apps::OutputTransaction& outputs) {
+            lidar_sgm::io::OutputTransaction& outputs) {
   lidar_sgm::SGMDensification<pcl::PointXYZI, PointOutT> sgm;
   sgm.setInputCloud(scan);
   sgm.setCalibration(calibration);
@@ -313,7 +313,7 @@ int run(int argc, char** argv) {
   int height = 0;
   if (args.has("image_size")) parseImageSize(args.text("image_size", ""), width, height);
   // Folders and permissions checked now, before any work; nothing replaced until all are written.
-  lidar_sgm::apps::OutputTransaction transaction(outputs);
+  lidar_sgm::io::OutputTransaction transaction(outputs);
 
   Timer loadTimer;
   std::printf("Loading %s", inputPath.c_str());

@@ -11,7 +11,7 @@
 #include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
-#include "common/output_transaction.hpp"
+#include "lidar_sgm/io/output_transaction.hpp"
 #include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
@@ -131,7 +131,7 @@ int run(int argc, char** argv) {
   std::vector<std::string> outputPaths{outPath};
   if (!colorPath.empty()) outputPaths.push_back(colorPath);
   if (!confidencePath.empty()) outputPaths.push_back(confidencePath);
-  lidar_sgm::apps::OutputTransaction outputs(outputPaths);
+  lidar_sgm::io::OutputTransaction outputs(outputPaths);
 
   Timer loadTimer;
   std::printf("Loading %s", leftPath.c_str());

@@ -17,6 +17,7 @@
 #include "common/output_paths.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
+#include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/synth/encoding.hpp"
 #include "lidar_sgm/synth/frame.hpp"
@@ -104,7 +105,7 @@ cv::Mat toMat(const lidar_sgm::Image<T>& image, int type) {
 }
 
 void writeFileAtomically(const fs::path& target, const std::string& bytes) {
-  lidar_sgm::apps::writeFileAtomically(target.string(), bytes);
+  lidar_sgm::io::writeFileAtomically(target.string(), bytes);
 }
 
 std::string frameId(int index) {

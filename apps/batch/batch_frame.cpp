@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 #include "batch/frame_calibration.hpp"
 #include "common/timer.hpp"
@@ -22,28 +23,41 @@ struct FrameData {
   cv::Mat right;
 };
 
-/// The checks of lidar_sgm_densify's loading, in its order.
-FrameData load(const Frame& frame, int width, int height, std::uint64_t maxPoints) {
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+/// The checks of lidar_sgm_densify's loading, in its order, and the sequence's image size.
+FrameData load(const Frame& frame, int width, int height, std::uint64_t maxPoints,
+               const std::map<std::string, CalibrationImage>& shared) {
   FrameData data;
   data.scan.reset(new pcl::PointCloud<pcl::PointXYZI>(io::readCloud(frame.scan, maxPoints)));
   if (data.scan->empty()) throw std::invalid_argument("the input cloud '" + frame.scan + "' has no points");
   data.calibration = readFrameCalibration(frame, width, height);
   if (width > 0 && (data.calibration.width != width || data.calibration.height != height)) {
-    throw std::invalid_argument("-image_size " + std::to_string(width) + "x" + std::to_string(height) +
-                                " disagrees with the calibration '" + frame.calib + "', which is for " +
-                                std::to_string(data.calibration.width) + "x" +
-                                std::to_string(data.calibration.height));
+    throw std::invalid_argument("-image_size " + sizeText(width, height) + " disagrees with the calibration '" +
+                                frame.calib + "', which is for " +
+                                sizeText(data.calibration.width, data.calibration.height));
   }
   if (!frame.left.empty()) {
     data.left = io::readImage(frame.left);
     requireOrganizedImage(frame.left, data.left);
-    if (!frame.right.empty()) {
-      data.right = io::readImage(frame.right);
-      if (data.right.size() != data.left.size()) {
-        throw std::invalid_argument("the left image '" + frame.left + "' is " + std::to_string(data.left.cols) +
-                                    "x" + std::to_string(data.left.rows) + " but the right image is " +
-                                    std::to_string(data.right.cols) + "x" + std::to_string(data.right.rows));
-      }
+  }
+  const auto sequence = shared.find(frame.calib);
+  if (sequence != shared.end() && data.calibration.width == 0 && data.calibration.height == 0) {
+    const CalibrationImage& size = sequence->second;
+    if (!data.left.empty() && (data.left.cols != size.width || data.left.rows != size.height)) {
+      throw std::invalid_argument("the left image '" + frame.left + "' is " + sizeText(data.left.cols, data.left.rows) +
+                                  " but the calibration '" + frame.calib + "' is the sequence's, whose images are " +
+                                  sizeText(size.width, size.height) + " ('" + size.image +
+                                  "'): its intrinsics do not fit this frame");
+    }
+    data.calibration.width = size.width;
+    data.calibration.height = size.height;
+  }
+  if (!frame.left.empty() && !frame.right.empty()) {
+    data.right = io::readImage(frame.right);
+    if (data.right.size() != data.left.size()) {
+      throw std::invalid_argument("the left image '" + frame.left + "' is " + sizeText(data.left.cols, data.left.rows) +
+                                  " but the right image is " + sizeText(data.right.cols, data.right.rows));
     }
   }
   return data;
@@ -76,6 +90,22 @@ FrameResult densifyWith(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, const 
 
 }  // namespace
 
+std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<Frame>& frames) {
+  std::map<std::string, int> uses;
+  for (const Frame& frame : frames) ++uses[frame.calib];
+  std::map<std::string, CalibrationImage> sizes;
+  for (const Frame& frame : frames) {
+    if (frame.left.empty() || uses[frame.calib] < 2 || sizes.count(frame.calib) > 0) continue;
+    try {
+      const cv::Mat image = io::readImage(frame.left);
+      sizes[frame.calib] = {image.cols, image.rows, frame.left};
+    } catch (const std::exception&) {
+      // An unreadable image fails its own frame; the next one gives the size.
+    }
+  }
+  return sizes;
+}
+
 /// The point types lidar_sgm_densify picks: colored when an image can color it, with the
 /// confidence field unless it is off. Each is created on first use and kept.
 struct FrameDensifier::Densifications {
@@ -92,15 +122,16 @@ struct FrameDensifier::Densifications {
   }
 };
 
-FrameDensifier::FrameDensifier(const Arguments& args, int width, int height, int threads)
-    : args_(args), width_(width), height_(height), threads_(threads),
+FrameDensifier::FrameDensifier(const Arguments& args, int width, int height, int threads,
+                               std::map<std::string, CalibrationImage> shared)
+    : args_(args), width_(width), height_(height), threads_(threads), shared_(std::move(shared)),
       densifications_(std::make_unique<Densifications>()) {}
 
 FrameDensifier::~FrameDensifier() = default;
 
 FrameResult FrameDensifier::densify(const Frame& frame, const std::string& outPath) {
   const Timer loadTimer;
-  const FrameData data = load(frame, width_, height_, maxPointsFrom(args_));
+  const FrameData data = load(frame, width_, height_, maxPointsFrom(args_), shared_);
   FrameTimings ms;
   ms.load = loadTimer.elapsedMs();
   Densifications& d = *densifications_;

@@ -2,8 +2,10 @@
 // One frame of a batch: read, densified as lidar_sgm_densify does, written atomically.
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "batch/frame_list.hpp"
 #include "batch/manifest.hpp"
@@ -18,6 +20,19 @@ struct FrameResult {
   FrameTimings ms;
 };
 
+/// The image size a calibration file is used with, and the image that fixed it.
+struct CalibrationImage {
+  int width = 0;
+  int height = 0;
+  std::string image;
+};
+
+/// For each calibration file that two or more of `frames` share (a sequence's calib.txt), the size
+/// of the first of their left images (in `frames` order) that can be read. One calibration fits one
+/// image size: a frame of another size is refused rather than densified with intrinsics that are
+/// not its own (KITTI's odometry calib.txt carries no size to check against).
+std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<Frame>& frames);
+
 /// Densifies frames one after another with the method options of `args` (densify_options.hpp),
 /// keeping one SGMDensification per output point type so that the matcher's buffers are
 /// allocated once per worker, not once per frame (the result does not depend on it: every
@@ -26,8 +41,10 @@ struct FrameResult {
 class FrameDensifier {
  public:
   /// `width`/`height` is -image_size (0 = from the calibration or the images); `threads` the
-  /// matcher's threads for this worker (never changes a result).
-  FrameDensifier(const Arguments& args, int width, int height, int threads);
+  /// matcher's threads for this worker (never changes a result); `shared` is
+  /// sharedCalibrationImages() of the whole sequence.
+  FrameDensifier(const Arguments& args, int width, int height, int threads,
+                 std::map<std::string, CalibrationImage> shared);
   ~FrameDensifier();
   FrameDensifier(const FrameDensifier&) = delete;
   FrameDensifier& operator=(const FrameDensifier&) = delete;
@@ -43,6 +60,7 @@ class FrameDensifier {
   int width_;
   int height_;
   int threads_;
+  std::map<std::string, CalibrationImage> shared_;
   std::unique_ptr<Densifications> densifications_;
 };
 

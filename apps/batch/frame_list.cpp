@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -28,23 +29,47 @@ std::string imageFor(const fs::path& folder, const std::string& stem) {
   return fs::is_regular_file(image, ec) ? image.string() : std::string();
 }
 
+/// The left images' stems of `folder` (PNG files).
+std::set<std::string> imageStems(const fs::path& folder) {
+  std::set<std::string> stems;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code typeError;
+    if (it->is_regular_file(typeError) && lowerExtension(it->path().string()) == ".png") {
+      stems.insert(it->path().stem().string());
+    }
+  }
+  return stems;
+}
+
+/// Whether a left image without a scan is a frame whose scan is missing.
+enum class MissingScans { Ignored, Reported };
+
 /// One frame per scan in `scanFolder`, in name order; `calibOf` gives a frame's calibration file.
+/// With MissingScans::Reported (a sequence, where every image has its scan) a left image without
+/// a scan is a frame too, whose scan path names the missing file: it fails, with that cause,
+/// instead of vanishing from the sequence.
 template <typename CalibOf>
 std::vector<Frame> framesOf(const fs::path& scanFolder, const fs::path& leftFolder, const fs::path& rightFolder,
-                            const std::string& namePrefix, CalibrationFormat format, CalibOf calibOf) {
-  std::vector<fs::path> scans;
+                            const std::string& namePrefix, CalibrationFormat format, MissingScans missing,
+                            CalibOf calibOf) {
+  std::map<std::string, fs::path> scans;  // by stem: name order
   for (const fs::directory_entry& entry : fs::directory_iterator(scanFolder)) {
-    if (entry.is_regular_file() && isScan(entry.path())) scans.push_back(entry.path());
-  }
-  std::sort(scans.begin(), scans.end());
-  std::vector<Frame> frames;
-  std::set<std::string> stems;
-  for (const fs::path& scan : scans) {
-    const std::string stem = scan.stem().string();
-    if (!stems.insert(stem).second) {
+    if (!entry.is_regular_file() || !isScan(entry.path())) continue;
+    const std::string stem = entry.path().stem().string();
+    if (!scans.emplace(stem, entry.path()).second) {
       throw std::invalid_argument("'" + scanFolder.string() + "' has two scans named '" + stem +
                                   "' (different extensions): which one is the frame?");
     }
+  }
+  if (missing == MissingScans::Reported) {
+    const std::string extension = scans.empty() ? ".bin" : scans.begin()->second.extension().string();
+    for (const std::string& stem : imageStems(leftFolder)) {
+      if (scans.count(stem) == 0) scans.emplace(stem, scanFolder / (stem + extension));
+    }
+  }
+  std::vector<Frame> frames;
+  for (const auto& [stem, scan] : scans) {
     Frame frame;
     frame.name = namePrefix + stem;
     frame.scan = scan.string();
@@ -67,7 +92,7 @@ bool isOdometrySequence(const fs::path& dir) { return isDirectory(dir / "velodyn
 std::vector<Frame> odometrySequence(const fs::path& dir, const std::string& namePrefix) {
   const std::string calib = (dir / "calib.txt").string();
   return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", namePrefix, CalibrationFormat::KittiOdometry,
-                  [&](const std::string&) { return calib; });
+                  MissingScans::Reported, [&](const std::string&) { return calib; });
 }
 
 /// Every sequence of a `sequences` folder, in name order.
@@ -94,7 +119,7 @@ std::vector<Frame> rawDrive(const fs::path& dir) {
   const std::string calib = fs::absolute(dir).lexically_normal().parent_path().string();
   std::vector<Frame> frames = framesOf(dir / "velodyne_points" / "data", dir / "image_02" / "data",
                                        dir / "image_03" / "data", "", CalibrationFormat::Auto,
-                                       [&](const std::string&) { return calib; });
+                                       MissingScans::Reported, [&](const std::string&) { return calib; });
   for (Frame& frame : frames) {
     frame.oxts = (dir / "oxts" / "data" / (fs::path(frame.scan).stem().string() + ".txt")).string();
   }
@@ -109,7 +134,7 @@ std::vector<Frame> framesOfLayout(const fs::path& dir) {
       return rawDrive(dir);
     case Layout::KittiObject:
       return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", "", CalibrationFormat::Auto,
-                      [&](const std::string& stem) { return (dir / "calib" / (stem + ".txt")).string(); });
+                      MissingScans::Ignored, [&](const std::string& stem) { return (dir / "calib" / (stem + ".txt")).string(); });
     case Layout::KittiOdometryRoot:
     case Layout::ListFile:
       break;

@@ -1,5 +1,8 @@
 #include "batch/manifest.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -41,7 +44,8 @@ std::string toJsonLine(const FrameRecord& r) {
                 "\"total_ms\":%.1f",
                 r.ms.load, r.ms.project, r.ms.match, r.ms.reproject, r.ms.save, r.ms.total());
   return "{\"frame\":\"" + jsonEscape(r.frame) + "\",\"status\":\"" + jsonEscape(r.status) +
-         "\",\"points\":" + std::to_string(r.points) + ",\"bytes\":" + std::to_string(r.bytes) + "," + timings + ",\"error\":\"" + jsonEscape(r.error) + "\"}";
+         "\",\"points\":" + std::to_string(r.points) + ",\"bytes\":" + std::to_string(r.bytes) + "," + timings + ",\"error\":\"" + jsonEscape(r.error) + "\"" +
+         (r.redone.empty() ? "" : ",\"redone\":\"" + jsonEscape(r.redone) + "\"") + "}";
 }
 
 namespace {
@@ -143,6 +147,8 @@ std::optional<FrameRecord> fromJsonLine(const std::string& line) {
     if (found == numbers.end()) return std::nullopt;
     *value = found->second;
   }
+  const auto redone = strings.find("redone");  // only where a frame was redone
+  if (redone != strings.end()) record.redone = redone->second;
   const auto points = numbers.find("points");
   const auto bytes = numbers.find("bytes");
   if (points == numbers.end() || bytes == numbers.end() || points->second < 0 || bytes->second < 0) return std::nullopt;
@@ -151,18 +157,24 @@ std::optional<FrameRecord> fromJsonLine(const std::string& line) {
   return record;
 }
 
-Manifest::Manifest(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "w")) {
-  if (!file_) throw std::runtime_error("cannot create the manifest '" + path + "': " + std::strerror(errno));
+Manifest::Manifest(const std::string& path)
+    : path_(path), descriptor_(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0666)) {
+  if (descriptor_ < 0) throw std::runtime_error("cannot create the manifest '" + path + "': " + std::strerror(errno));
 }
 
 Manifest::~Manifest() {
-  if (file_) std::fclose(file_);
+  if (descriptor_ >= 0) ::close(descriptor_);
 }
 
 void Manifest::append(const FrameRecord& record) {
+  // One write() per line, appended (O_APPEND): a line is whole or absent, never interleaved.
   const std::string line = toJsonLine(record) + "\n";
-  if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0) {
-    throw std::runtime_error("cannot write the manifest '" + path_ + "': " + std::strerror(errno));
+  for (;;) {
+    const ssize_t written = ::write(descriptor_, line.data(), line.size());
+    if (written == static_cast<ssize_t>(line.size())) return;
+    if (written < 0 && errno == EINTR) continue;
+    const std::string reason = written < 0 ? std::strerror(errno) : "the line was cut short (a full disk?)";
+    throw std::runtime_error("cannot write the manifest '" + path_ + "': " + reason);
   }
 }
 

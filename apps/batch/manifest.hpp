@@ -4,7 +4,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -29,6 +28,8 @@ struct FrameRecord {
   std::uintmax_t bytes = 0;  ///< the cloud file's size (also for a skipped frame's existing file)
   FrameTimings ms;
   std::string error;   ///< why it failed; empty otherwise
+  std::string redone;  ///< why an earlier run's cloud of the frame was not trusted (so it was made
+                       ///< again); empty otherwise, and then not written
 };
 
 /// `text` as a JSON string's contents: quotes, backslashes and control characters escaped.
@@ -36,7 +37,7 @@ std::string jsonEscape(const std::string& text);
 
 /// The record as one JSON object on one line (no newline):
 /// {"frame":..,"status":..,"points":..,"bytes":..,"load_ms":..,"project_ms":..,"match_ms":..,
-///  "reproject_ms":..,"save_ms":..,"total_ms":..,"error":..}
+///  "reproject_ms":..,"save_ms":..,"total_ms":..,"error":..[,"redone":..]}
 std::string toJsonLine(const FrameRecord& record);
 
 /// The record of a line toJsonLine() wrote (total_ms, the sum, is not kept); std::nullopt for
@@ -52,13 +53,14 @@ class Manifest {
   Manifest(const Manifest&) = delete;
   Manifest& operator=(const Manifest&) = delete;
 
-  /// Appends the record's line and flushes it to the file. Throws std::runtime_error on failure.
+  /// Appends the record's line with one write(). Throws std::runtime_error on failure (a line
+  /// cut short stays as it is: fromJsonLine() passes it over).
   void append(const FrameRecord& record);
   const std::string& path() const { return path_; }
 
  private:
   std::string path_;
-  std::FILE* file_ = nullptr;
+  int descriptor_ = -1;
 };
 
 }  // namespace apps

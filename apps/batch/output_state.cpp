@@ -8,12 +8,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <regex>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
 
 #include "common/output_paths.hpp"
+#include "lidar_sgm/io/atomic_file.hpp"
+#include "lidar_sgm/io/cloud_io.hpp"
 
 namespace fs = std::filesystem;
 
@@ -74,11 +77,10 @@ void checkAndRecordCloudOptions(const std::string& outDir, const std::string& op
                                 "): skipping their frames would mix both; use the same options, -overwrite to redo "
                                 "every frame, or another -output_dir");
   }
-  writeFileAtomically(path, options);
+  io::writeFileAtomically(path, options);
 }
 
 std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs) {
-  static const std::regex temporary(R"(\.(.+)\.tmp[0-9]+(\.[A-Za-z0-9]+))");
   std::set<fs::path> targets;
   std::set<fs::path> folders;
   for (const std::string& output : outputs) {
@@ -90,15 +92,35 @@ std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs) {
     std::error_code ec;
     for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
          it.increment(ec)) {
-      std::smatch match;
-      const std::string name = it->path().filename().string();
-      if (!std::regex_match(name, match, temporary)) continue;
-      if (targets.count(folder / (match[1].str() + match[2].str())) == 0) continue;
+      const std::optional<io::TemporaryName> name = io::parseTemporaryName(it->path().filename().string());
+      if (!name || targets.count(folder / name->output) == 0) continue;
+      // A live writer's (another shard's, or a run of another folder's list that writes here).
+      if (io::processAlive(name->pid)) continue;
       std::error_code removeError;
       if (fs::remove(it->path(), removeError)) ++removed;
     }
   }
   return removed;
+}
+
+std::string untrustedCloudReason(const std::string& path, const std::map<std::string, FrameRecord>& earlier,
+                                 const std::string& frame) {
+  std::error_code ec;
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  if (ec) return ec.message();
+  const auto found = earlier.find(frame);
+  if (found != earlier.end() && found->second.status == "ok" && found->second.bytes != bytes) {
+    return "the manifest records " + std::to_string(found->second.bytes) + " bytes, the file has " +
+           std::to_string(bytes);
+  }
+  try {
+    io::checkCloudFile(path);
+  } catch (const std::exception& e) {
+    const std::string prefix = "cannot read cloud '" + path + "': ";
+    const std::string what = e.what();
+    return what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what;
+  }
+  return "";
 }
 
 std::map<std::string, FrameRecord> earlierFrameRecords(const std::string& outDir) {

@@ -32,10 +32,16 @@ std::string cloudOptionsPath(const std::string& outDir);
 /// options are recorded).
 void checkAndRecordCloudOptions(const std::string& outDir, const std::string& options, bool overwrite);
 
-/// Removes the hidden temporary files (".<stem>.tmp<pid>.<ext>") that an interrupted run left
-/// beside the clouds `outputs` (this shard's frames: no other process writes them, so no other
-/// process's file is touched). Returns how many were removed.
+/// Removes the hidden temporary files (".<stem>.tmp<pid>.<ext>") that an interrupted run, no
+/// longer alive, left beside the clouds `outputs`; a live process's are left alone. Returns how
+/// many were removed.
 std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs);
+
+/// Why the existing cloud `path` of frame `frame` cannot be trusted as done, or "" when it can:
+/// its size differs from what `earlier` (the manifests) records of it, or it is not whole
+/// (io::checkCloudFile: a cloud cut short by a full disk, or written by other means and broken).
+std::string untrustedCloudReason(const std::string& path, const std::map<std::string, FrameRecord>& earlier,
+                                 const std::string& frame);
 
 /// What the manifests in `outDir` (manifest.jsonl and the shards' manifest.shard-K-of-N.jsonl)
 /// say of the frames whose clouds earlier runs made, by frame name: their "ok" records, and

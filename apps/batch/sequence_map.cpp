@@ -35,6 +35,13 @@ std::string megabytes(std::uintmax_t bytes) {
   return text;
 }
 
+/// A build stopped by a signal: nothing written, the caller says so.
+MapResult stoppedResult() {
+  MapResult result;
+  result.ok = false;
+  return result;
+}
+
 }  // namespace
 
 std::set<std::string> mapValueOptions() { return {"map", "map_voxel", "map_picture", "poses"}; }
@@ -104,7 +111,7 @@ void SequenceMap::frameWritten(const Frame& frame, const std::string& cloudPath)
   cloudPaths_[found->second] = cloudPath;
 }
 
-MapResult SequenceMap::build() const {
+MapResult SequenceMap::build(const std::function<bool()>& stop) const {
   MapResult result;
   try {
     const Timer timer;
@@ -112,6 +119,7 @@ MapResult SequenceMap::build() const {
     std::map<std::string, FrameGeometry> geometries;  // by calibration file
     std::vector<std::string> leftOut;
     for (std::size_t i = 0; i < frames_.size(); ++i) {
+      if (stop()) return stoppedResult();
       const Frame& frame = frames_[i];
       if (cloudPaths_[i].empty()) {
         leftOut.push_back(frame.name);
@@ -128,6 +136,7 @@ MapResult SequenceMap::build() const {
       map.add(readFrameCloud(cloudPaths_[i]), cloudToWorld(poses_[i], g.poseCameraFromLidar, g.calibration, cloudFrame_));
     }
     if (map.size() == 0) throw std::runtime_error("no frame's cloud to merge");
+    if (stop()) return stoppedResult();
     writeMapCloud(options_.mapPath, map);
     std::vector<Eigen::Vector3d> trajectory;
     for (const Eigen::Isometry3d& pose : poses_) trajectory.push_back(pose.translation());
@@ -135,6 +144,7 @@ MapResult SequenceMap::build() const {
     view.minMetresPerPixel = options_.voxelSize;
     const TopView top = renderTopView(map.points(), map.hasColor(), trajectory, view);
     io::writeImageAtomically(options_.picturePath, top.image);
+    result.written = true;
 
     char text[512];
     std::snprintf(text, sizeof(text), "Map %s: %zu points, %s, %zu/%zu frames, voxel %.2f m, in %.1f s; picture %s",

@@ -3,6 +3,7 @@
 // by their poses and merged into one voxel map, with a picture of it from above.
 
 #include <cstddef>
+#include <functional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -35,7 +36,8 @@ MapOptions mapOptionsFrom(const Arguments& args, const Shard& shard);
 
 /// What the map's line of the summary says.
 struct MapResult {
-  bool ok = true;       ///< false when the map could not be built or written
+  bool ok = true;       ///< false when the map could not be built or written, or was stopped
+  bool written = false; ///< the map and its picture were written
   std::string summary;  ///< "; map PATH: N points, X MB ..." for the summary line
 };
 
@@ -57,7 +59,9 @@ class SequenceMap {
 
   /// Builds and writes the map and its picture (atomically), reporting left-out frames and
   /// errors on stderr. Never throws: an error is in the result.
-  MapResult build() const;
+  /// `stop` is asked between frames and before the map is written: true stops the build, and
+  /// nothing is written.
+  MapResult build(const std::function<bool()>& stop = [] { return false; }) const;
 
   /// Where the poses came from, for the log.
   const std::string& posesSource() const { return posesSource_; }

@@ -1,11 +1,8 @@
 #include "common/output_paths.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -38,30 +35,6 @@ void requireOutput(const std::string& path, const std::vector<std::string>& exte
     if (!input.empty() && samePath(path, input)) {
       throw std::invalid_argument("output '" + path + "' is the input '" + input + "'; refusing to overwrite an input");
     }
-  }
-}
-
-void writeFileAtomically(const std::string& path, const std::string& bytes) {
-  namespace fs = std::filesystem;
-  fs::path temporary(path);
-  temporary.replace_filename("." + fs::path(path).stem().string() + ".tmp" + std::to_string(::getpid()) +
-                             fs::path(path).extension().string());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw std::runtime_error("cannot write '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temporary, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
   }
 }
 

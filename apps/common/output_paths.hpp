@@ -1,6 +1,6 @@
 #pragma once
-// Output files shared by the tools: never overwrite an input, right extension, written whole or
-// not at all.
+// Output files shared by the tools: never overwrite an input, right extension (written whole or
+// not at all by io::AtomicFile).
 
 #include <string>
 #include <vector>
@@ -19,10 +19,6 @@ void requireOutput(const std::string& path, const std::vector<std::string>& exte
 /// Lower-case extension with the dot ("" when there is none).
 std::string lowerExtension(const std::string& path);
 
-/// Writes `bytes` to `path` through a hidden temporary file in the same folder (".stem.tmpPID.ext",
-/// as the library's cloud and image writers) renamed when complete, so that a reader never sees
-/// half a file. Throws std::runtime_error naming `path` on failure, leaving nothing behind.
-void writeFileAtomically(const std::string& path, const std::string& bytes);
 
 }  // namespace apps
 }  // namespace lidar_sgm

@@ -23,6 +23,7 @@
 #include "lidar_sgm/eval/groups.hpp"
 #include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/eval/report.hpp"
+#include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/version.hpp"
 
 namespace fs = std::filesystem;
@@ -248,7 +249,7 @@ int run(int argc, char** argv) {
     }
     std::printf("%s [done, %.0f ms]\n", g.name.c_str(), timer.elapsedMs());
   }
-  writeTextAtomically(out + "/results.md", markdown);
+  io::writeFileAtomically(out + "/results.md", markdown);
   nlohmann::json json = toJson(results);
   for (std::size_t i = 0; i < results.size(); ++i) json["protocols"][i]["confidence"] = confidenceJson(results[i]);
   // How the LiDAR-SGM methods ran, so that runs at different scales are never mixed up.
@@ -261,7 +262,7 @@ int run(int argc, char** argv) {
                       {"min_confidence", runOptions.minConfidence},
                       {"sky_filter", runOptions.filters.sky.enabled},
                       {"outlier_filter", runOptions.filters.outliers.enabled}};
-  writeTextAtomically(out + "/results.json", json.dump(2));
+  io::writeFileAtomically(out + "/results.json", json.dump(2));
   std::printf("Results in %s: results.md, results.json, plots/, %s\n", out.c_str(), pictures.empty() ? "" : "pictures/");
   return 0;
 }

@@ -4,8 +4,10 @@
 #include <string>
 
 #include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
 #include "errors.hpp"
 #include "lidar_sgm/geometry/calibration.hpp"
@@ -30,15 +32,34 @@ void validateKnown(const StereoCalibration& c) {
   check.validate();
 }
 
-StereoCalibration makeCalibration(const Eigen::Matrix3d& K, double baseline, const py::object& T, int width,
+/// A rows x cols matrix of numbers from any array-like, or ValueError naming `name`, the shape
+/// wanted and what was given (pybind's own cast says only "Unable to cast Python instance").
+template <int Rows, int Cols>
+Eigen::Matrix<double, Rows, Cols> matrixFrom(const py::object& value, const char* name) {
+  // ensure() converts lists and other dtypes, and returns an empty handle when it cannot.
+  const auto array = py::array_t<double, py::array::forcecast>::ensure(value);
+  if (!array || array.ndim() != 2 || array.shape(0) != Rows || array.shape(1) != Cols) {
+    throw std::invalid_argument(std::string(name) + ": expected a " + std::to_string(Rows) + "x" +
+                                std::to_string(Cols) + " matrix of numbers, got " +
+                                (array ? describeArray(array) : describeArray(value)));
+  }
+  Eigen::Matrix<double, Rows, Cols> m;
+  const auto cells = array.unchecked<2>();
+  for (int r = 0; r < Rows; ++r) {
+    for (int c = 0; c < Cols; ++c) m(r, c) = cells(r, c);
+  }
+  return m;
+}
+
+StereoCalibration makeCalibration(const py::object& K, double baseline, const py::object& T, int width,
                                   int height) {
   StereoCalibration c;
-  c.K = K;
+  c.K = matrixFrom<3, 3>(K, "K");
   c.baseline = baseline;
   c.width = width;
   c.height = height;
   if (!T.is_none()) {
-    const Eigen::Matrix4d m = T.cast<Eigen::Matrix4d>();
+    const Eigen::Matrix4d m = matrixFrom<4, 4>(T, "T_cam_lidar");
     if (!(m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).isZero(0.0)) {
       throw std::invalid_argument("T_cam_lidar: the last row of the 4x4 transform must be (0 0 0 1)");
     }

@@ -15,6 +15,7 @@
 #include "lidar_sgm/eval/methods.hpp"
 #include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/eval/report.hpp"
+#include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/io/image_io.hpp"
 #include "plots.hpp"
 
@@ -247,7 +248,7 @@ std::string runConfidenceFit(const ConfidenceFitOptions& options) {
     ++c;
   }
   io::writeImageAtomically(options.out + "/reliability.png", linePlot(plot));
-  writeTextAtomically(options.out + "/confidence_fit.md", md.str());
+  io::writeFileAtomically(options.out + "/confidence_fit.md", md.str());
   return md.str();
 }
 

@@ -1,21 +1,14 @@
 #include "lidar_sgm/eval/report.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <system_error>
 
 #include "report_cloud.hpp"
 
 namespace lidar_sgm {
 namespace eval {
-namespace fs = std::filesystem;
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -125,24 +118,6 @@ nlohmann::json protocolJson(const ProtocolResult& result) {
           {"medians", medians},          {"sweeps", sweeps}};
 }
 
-// ---------------------------------------------------------------------------------------------
-// Atomic write
-
-/// A hidden name beside `path` (same directory, so the rename is atomic), unique per process and
-/// call: dir/.name.tmpPID-N (the naming idea of src/io/atomic_file.cpp, plus a counter so threads
-/// writing the same path do not share a temporary).
-fs::path temporaryPathFor(const fs::path& path) {
-  static std::atomic<unsigned> counter{0};
-  fs::path temporary = path;
-  temporary.replace_filename("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "-" +
-                             std::to_string(counter++));
-  return temporary;
-}
-
-[[noreturn]] void failWrite(const std::string& path, const std::string& reason) {
-  throw std::runtime_error("cannot write '" + path + "': " + reason);
-}
-
 }  // namespace
 
 double medianOf(std::vector<double> values) {
@@ -240,30 +215,6 @@ nlohmann::json toJson(const std::vector<ProtocolResult>& results) {
   nlohmann::json protocols = nlohmann::json::array();
   for (const ProtocolResult& result : results) protocols.push_back(protocolJson(result));
   return {{"protocols", protocols}};
-}
-
-void writeTextAtomically(const std::string& path, const std::string& text) {
-  fs::path target(path);
-  const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(directory, ec)) failWrite(path, "directory '" + directory.string() + "' does not exist");
-  const fs::path temporary = temporaryPathFor(target);
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    if (!file) failWrite(path, "cannot create temporary file '" + temporary.string() + "'");
-    file.write(text.data(), static_cast<std::streamsize>(text.size()));
-    file.close();
-    if (!file) {
-      fs::remove(temporary, ec);
-      failWrite(path, "write failed");
-    }
-  }
-  fs::rename(temporary, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    failWrite(path, ec.message());
-  }
 }
 
 }  // namespace eval

@@ -1,11 +1,8 @@
 #include "binary_pcd_writer.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
-#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -24,19 +21,13 @@ struct Span {
   std::size_t size = 0;
 };
 
-struct FileCloser {
-  void operator()(std::FILE* file) const { std::fclose(file); }
-};
-
 constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
 
 [[noreturn]] void fail(const std::string& problem) { throw std::runtime_error(problem); }
 
-std::string systemError() { return std::strerror(errno); }
-
 }  // namespace
 
-void writeBinaryPcd(const std::string& file, const pcl::PCLPointCloud2& layout, const std::uint8_t* records) {
+void writeBinaryPcd(AtomicFile& out, const pcl::PCLPointCloud2& layout, const std::uint8_t* records) {
   // PCL's header generator declares exactly the fields and sizes of `packed`.
   pcl::PCLPointCloud2 packed;
   packed.width = layout.width;
@@ -68,11 +59,7 @@ void writeBinaryPcd(const std::string& file, const pcl::PCLPointCloud2& layout, 
       pcl::PCDWriter().generateHeaderBinary(packed, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity()) +
       "DATA binary\n";
 
-  std::unique_ptr<std::FILE, FileCloser> out(std::fopen(file.c_str(), "wb"));
-  if (!out) fail("cannot create the file: " + systemError());
-  // Our buffer is the only one: every fwrite below is one write() of up to 1 MiB.
-  std::setvbuf(out.get(), nullptr, _IONBF, 0);
-  if (std::fwrite(header.data(), 1, header.size(), out.get()) != header.size()) fail(systemError());
+  out.write(header);
 
   const std::size_t points = std::size_t{layout.width} * layout.height;
   const std::size_t perChunk = std::max<std::size_t>(1, kBufferBytes / step);
@@ -87,11 +74,8 @@ void writeBinaryPcd(const std::string& file, const pcl::PCLPointCloud2& layout, 
         to += span.size;
       }
     }
-    const std::size_t bytes = count * step;
-    if (std::fwrite(buffer.data(), 1, bytes, out.get()) != bytes) fail(systemError());
+    out.write(buffer.data(), count * step);  // one write() of up to 1 MiB
   }
-  // A full disk may only show when the file is closed.
-  if (std::fclose(out.release()) != 0) fail(systemError());
 }
 
 }  // namespace detail

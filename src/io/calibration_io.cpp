@@ -16,7 +16,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "atomic_file.hpp"
+#include "lidar_sgm/io/atomic_file.hpp"
 #include "calibration_yaml.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 #include "text_excerpt.hpp"
@@ -420,22 +420,16 @@ void writeCalibrationYaml(const std::string& path, const StereoCalibration& cali
   if (!directory.empty() && !fs::is_directory(directory, ec)) {
     throw std::runtime_error("cannot write '" + path + "': no such directory '" + directory.string() + "'");
   }
-  const std::string temporary = detail::temporaryPathFor(path);  // keeps .yaml: FileStorage picks YAML
+  // Written in memory, then through AtomicFile: every write checked, nothing half written.
+  std::string text;
   try {
-    cv::FileStorage storage;
-    if (!storage.open(temporary, cv::FileStorage::WRITE)) {
-      throw std::runtime_error("cannot write '" + path + "': the directory is not writable");
-    }
+    cv::FileStorage storage(".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
     writeYamlContent(storage, calibration);
-    storage.release();
+    text = storage.releaseAndGetString();
   } catch (const cv::Exception& e) {
-    detail::discardTemporary(temporary);
     throw std::runtime_error("cannot write '" + path + "': " + trim(e.what()));
-  } catch (...) {
-    detail::discardTemporary(temporary);  // never leave a half-written hidden file behind
-    throw;
   }
-  detail::commitTemporary(temporary, path);
+  writeFileAtomically(path, text);
 }
 
 StereoCalibration readCalibration(const std::string& path, int width, int height) {

@@ -14,11 +14,6 @@
 #include <type_traits>
 #include <vector>
 
-#include <pcl/io/pcd_io.h>  // the writers
-#include <pcl/io/ply_io.h>
-
-#include "atomic_file.hpp"
-#include "binary_pcd_writer.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 #include "pcd_reader.hpp"
 #include "ply_reader.hpp"
@@ -33,10 +28,6 @@ constexpr std::uint64_t kKittiPointBytes = 4 * sizeof(float);  // x, y, z, refle
 
 [[noreturn]] void failRead(const std::string& path, const std::string& problem) {
   throw std::runtime_error("cannot read cloud '" + path + "': " + problem);
-}
-
-[[noreturn]] void failWrite(const std::string& path, const std::string& problem) {
-  throw std::runtime_error("cannot write '" + path + "': " + problem);
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -313,71 +304,6 @@ pcl::PointCloud<pcl::PointXYZI> kittiBinFromBytes(const std::string& source, con
   return cloud;
 }
 
-// ---- writing ------------------------------------------------------------------------------
-
-// PCL's writers trust the blob's sizes; an inconsistent one would be written past its data.
-void checkWritable(const std::string& path, const pcl::PCLPointCloud2& cloud) {
-  if (cloud.fields.empty()) failWrite(path, "the cloud has no fields");
-  const std::uint64_t expected = static_cast<std::uint64_t>(cloud.width) * cloud.height * cloud.point_step;
-  if (cloud.data.size() != expected) {
-    failWrite(path, "the cloud is inconsistent: " + std::to_string(cloud.data.size()) + " data bytes for " +
-                        std::to_string(cloud.width) + " x " + std::to_string(cloud.height) + " points of " +
-                        std::to_string(cloud.point_step) + " bytes");
-  }
-}
-
-// Floats need 9 significant digits to read back exactly (PCL's default is 8).
-constexpr int kAsciiPrecision = 9;
-
-// Throws std::runtime_error (our writer) or returns PCL's status (0 = success).
-int writeAs(const std::string& file, const std::string& extension, CloudFormat format,
-            const pcl::PCLPointCloud2& cloud) {
-  const Eigen::Vector4f origin = Eigen::Vector4f::Zero();
-  const Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-  if (extension == ".pcd") {
-    switch (format) {
-      case CloudFormat::Binary: detail::writeBinaryPcd(file, cloud, cloud.data.data()); return 0;
-      case CloudFormat::Compressed: return pcl::PCDWriter().writeBinaryCompressed(file, cloud, origin, orientation);
-      case CloudFormat::Ascii: return pcl::PCDWriter().writeASCII(file, cloud, origin, orientation, kAsciiPrecision);
-    }
-  }
-  // range_grid rather than PCL's "camera" element: PCL's own PLY reader reports each camera
-  // property as "not handled" on stderr, while both keep an organized cloud's width x height.
-  if (format == CloudFormat::Ascii) {
-    return pcl::PLYWriter().writeASCII(file, cloud, origin, orientation, kAsciiPrecision, /*use_camera=*/false);
-  }
-  return pcl::PLYWriter().writeBinary(file, cloud, origin, orientation, /*use_camera=*/false);
-}
-
-// Refusals of checkCloudOutput are write errors here (std::runtime_error, as every writeCloud error).
-std::string checkedExtension(const std::string& path, CloudFormat format) {
-  try {
-    checkCloudOutput(path, format);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(e.what());
-  }
-  return lowerExtension(path);
-}
-
-// Runs `write` (PCL's status, 0 = success, or an exception) on a temporary file that is renamed
-// over `path` only on success and removed otherwise (a writer may leave a partial file).
-template <typename Write>
-void writeAtomically(const std::string& path, Write write) {
-  const std::string temporary = detail::temporaryPathFor(path);
-  int status = -1;
-  try {
-    status = write(temporary);
-  } catch (const std::exception& e) {
-    detail::discardTemporary(temporary);
-    failWrite(path, e.what());
-  }
-  if (status != 0) {
-    detail::discardTemporary(temporary);
-    failWrite(path, "PCL's writer failed (a missing or read-only folder, a full disk or a file size limit)");
-  }
-  detail::commitTemporary(temporary, path);
-}
-
 }  // namespace
 
 pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path, std::uint64_t maxPoints) {
@@ -415,6 +341,23 @@ pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path, std::uint6
   return plyFromBytes(path, bytes.data(), bytes.size(), maxPoints);
 }
 
+void checkCloudFile(const std::string& path) {
+  requireRegularFile(path);
+  const std::string extension = lowerExtension(path);
+  if (extension != ".pcd" && extension != ".ply") failRead(path, "expected a .pcd or .ply file");
+  std::error_code ec;
+  const std::uint64_t size = fs::file_size(path, ec);
+  if (ec) failRead(path, ec.message());
+  if (size == 0) failRead(path, "the file is empty");
+  const std::vector<unsigned char> bytes = readAllBytes(path, size);
+  // The parsers check the body against the header (and every ASCII value): nothing is converted.
+  if (extension == ".pcd") {
+    detail::parsePcd(path, bytes.data(), bytes.size(), kMaxCloudPoints);
+  } else {
+    detail::parsePly(path, bytes.data(), bytes.size(), kMaxCloudPoints);
+  }
+}
+
 pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t size, const std::string& source) {
   if (size == 0) failRead(source, "the buffer is empty");
   if (data == nullptr) failRead(source, "null data pointer for " + std::to_string(size) + " bytes");
@@ -427,66 +370,6 @@ pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path, std::uint64_t
   if (extension == ".pcd" || extension == ".ply") return readPcdOrPly(path, maxPoints);
   failRead(path, "unsupported extension '" + extension + "' (accepted: .bin, .pcd, .ply)");
 }
-
-std::string toString(CloudFormat format) {
-  switch (format) {
-    case CloudFormat::Binary: return "binary";
-    case CloudFormat::Compressed: return "compressed";
-    case CloudFormat::Ascii: return "ascii";
-  }
-  return "unknown";
-}
-
-CloudFormat cloudFormatFromString(const std::string& name) {
-  for (CloudFormat format : {CloudFormat::Binary, CloudFormat::Compressed, CloudFormat::Ascii}) {
-    if (toString(format) == name) return format;
-  }
-  throw std::invalid_argument("unknown cloud format '" + name + "': must be binary, compressed or ascii");
-}
-
-void checkCloudOutput(const std::string& path, CloudFormat format) {
-  const std::string extension = lowerExtension(path);
-  if (extension != ".pcd" && extension != ".ply") {
-    throw std::invalid_argument("cannot write '" + path + "': unsupported extension '" + extension +
-                                "' (accepted: .pcd, .ply)");
-  }
-  if (extension == ".ply" && format == CloudFormat::Compressed) {
-    throw std::invalid_argument("cannot write '" + path +
-                                "' compressed: PLY has no compressed form (write a .pcd, or a binary or ascii PLY)");
-  }
-}
-
-void writeCloud(const std::string& path, const pcl::PCLPointCloud2& cloud, CloudFormat format) {
-  const std::string extension = checkedExtension(path, format);
-  checkWritable(path, cloud);
-  if (extension == ".ply" && cloud.data.empty()) failWrite(path, "PCL cannot write an empty cloud as PLY (use .pcd)");
-  writeAtomically(path, [&](const std::string& file) { return writeAs(file, extension, format, cloud); });
-}
-
-namespace detail {
-
-void writeCloudRecords(const std::string& path, const pcl::PCLPointCloud2& layout, const std::uint8_t* records,
-                       std::size_t recordCount, CloudFormat format) {
-  const std::string extension = checkedExtension(path, format);
-  if (recordCount != static_cast<std::uint64_t>(layout.width) * layout.height) {
-    failWrite(path, "the cloud is inconsistent: " + std::to_string(recordCount) + " points for " +
-                        std::to_string(layout.width) + " x " + std::to_string(layout.height));
-  }
-  if (extension == ".pcd" && format == CloudFormat::Binary) {
-    if (layout.fields.empty()) failWrite(path, "the cloud has no fields");
-    writeAtomically(path, [&](const std::string& file) {
-      writeBinaryPcd(file, layout, records);
-      return 0;
-    });
-    return;
-  }
-  // PCL's writers need the points in a PCLPointCloud2.
-  pcl::PCLPointCloud2 blob = layout;
-  blob.data.assign(records, records + recordCount * layout.point_step);
-  writeCloud(path, blob, format);
-}
-
-}  // namespace detail
 
 }  // namespace io
 }  // namespace lidar_sgm

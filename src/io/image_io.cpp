@@ -14,7 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "atomic_file.hpp"
+#include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 #include <unistd.h>
 
@@ -261,19 +261,18 @@ cv::Mat quantiseColors(const cv::Mat& image, int levels) {
 void writeImageAtomically(const std::string& path, const cv::Mat& image) { writeImageAtomically(path, image, {}); }
 
 void writeImageAtomically(const std::string& path, const cv::Mat& image, const std::vector<int>& params) {
-  const std::string temporary = detail::temporaryPathFor(path);
-  bool written = false;
+  // Encoded in memory, then written through AtomicFile: OpenCV's file writers do not report
+  // every write error (a full disk could leave a truncated PNG).
+  std::vector<std::uint8_t> encoded;
   try {
-    written = cv::imwrite(temporary, image, params);
+    if (!cv::imencode(fs::path(path).extension().string(), image, encoded, params)) {
+      throw std::runtime_error("cannot write '" + path + "': OpenCV cannot encode this image as '" +
+                               fs::path(path).extension().string() + "'");
+    }
   } catch (const cv::Exception& e) {
-    detail::discardTemporary(temporary);
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
-  if (!written) {
-    detail::discardTemporary(temporary);
-    throw std::runtime_error("cannot write '" + path + "': OpenCV's writer failed (a missing or read-only folder, a full disk, a file size limit or an unknown extension)");
-  }
-  detail::commitTemporary(temporary, path);
+  writeFileAtomically(path, encoded.data(), encoded.size());
 }
 
 }  // namespace io

@@ -17,6 +17,9 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include "common/test_data.hpp"
 #include "common/test_paths.hpp"
 
@@ -52,13 +55,13 @@ std::vector<std::string> lines(const fs::path& path) {
   return out;
 }
 
-/// Every regular file under `dir` (relative path -> bytes), manifests and the record of the
-/// cloud options left out.
+/// Every regular file under `dir` (relative path -> bytes), manifests, the record of the cloud
+/// options and the run's lock files left out.
 std::map<std::string, std::string> clouds(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
     if (!e.is_regular_file() || e.path().string().find("manifest") != std::string::npos ||
-        e.path().filename() == "cloud_options.txt") {
+        e.path().filename() == "cloud_options.txt" || e.path().filename().string().rfind(".lidar_sgm_batch", 0) == 0) {
       continue;
     }
     files[fs::relative(e.path(), dir).string()] = readText(e.path());
@@ -70,9 +73,19 @@ std::map<std::string, std::string> clouds(const fs::path& dir) {
 int temporaries(const fs::path& dir) {
   int count = 0;
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
-    count += e.path().filename().string().rfind(".", 0) == 0 ? 1 : 0;
+    const std::string name = e.path().filename().string();
+    count += name.rfind(".", 0) == 0 && name.find(".tmp") != std::string::npos ? 1 : 0;
   }
   return count;
+}
+
+/// The pid of a process that has ended (a child, reaped): what a killed run's temporaries carry.
+long deadPid() {
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  return static_cast<long>(child);
 }
 
 constexpr int kFrames = 4;
@@ -307,6 +320,41 @@ TEST_F(BatchTool, ABadFrameIsReportedAndSkippedWhileTheOthersGoOn) {
   EXPECT_EQ(temporaries(out), 0);
 }
 
+TEST_F(BatchTool, AMissingScanIsAFailedFrameNamingTheFileNotAGapInTheSequence) {
+  const fs::path seq = odometrySequence();
+  fs::remove(seq / "velodyne" / "000002.bin");  // its images are still there
+  const fs::path out = root_ / "out";
+  const RunResult r = batch("-input_dir " + seq.string() + " -output_dir " + out.string());
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find(std::to_string(kFrames) + " frame(s)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Error: frame 000002: cannot read cloud '" + (seq / "velodyne" / "000002.bin").string() +
+                          "': no such file"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("3 ok, 0 skipped, 1 failed"), std::string::npos) << r.output;
+}
+
+TEST_F(BatchTool, AFrameWhoseImagesAreNotTheSequencesSizeIsRefused) {
+  const fs::path seq = odometrySequence();
+  // Frame 1's pair at half size: KITTI's calib.txt has no size, the sequence's first image gives it.
+  for (const char* folder : {"image_2", "image_3"}) {
+    const fs::path image = seq / folder / "000001.png";
+    cv::Mat half;
+    cv::resize(cv::imread(image.string(), cv::IMREAD_UNCHANGED), half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    ASSERT_TRUE(cv::imwrite(image.string(), half));
+  }
+  const fs::path out = root_ / "out";
+  const RunResult r = batch("-input_dir " + seq.string() + " -output_dir " + out.string());
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("Error: frame 000001: the left image '" + (seq / "image_2" / "000001.png").string() +
+                          "' is 160x48 but the calibration '" + (seq / "calib.txt").string() +
+                          "' is the sequence's, whose images are 320x96"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("3 ok, 0 skipped, 1 failed"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "000001.pcd"));
+}
+
 TEST_F(BatchTool, ListFileFramesWithoutImagesRunLidarOnlyAsLidarSgmDensifyDoes) {
   const std::string s = synth_.string();
   std::ofstream(root_ / "frames.txt") << "# scan left right calib\n"
@@ -438,16 +486,21 @@ TEST_F(BatchTool, ARunWithOtherCloudOptionsIsRefusedInsteadOfMixingTwoMethods) {
 TEST_F(BatchTool, TemporariesOfAKilledRunAreRemovedOnlyForThisShardsFrames) {
   const fs::path out = root_ / "out";
   fs::create_directories(out);
-  // As kill -9 leaves them: a hidden temporary per frame, from another process.
-  for (int i = 0; i < kFrames; ++i) std::ofstream(out / ("." + stem(i) + ".tmp99999.pcd")) << "half a cloud";
+  // As kill -9 leaves them: a hidden temporary per frame, from a process that has ended; and one
+  // of a live process (this test's), which is never touched.
+  const std::string dead = ".tmp" + std::to_string(deadPid()) + ".pcd";
+  for (int i = 0; i < kFrames; ++i) std::ofstream(out / ("." + stem(i) + dead)) << "half a cloud";
+  const std::string live = "." + stem(2) + ".tmp" + std::to_string(getpid()) + ".pcd";
+  std::ofstream(out / live) << "a live writer's";
   std::ofstream(out / ".notes.tmp1.pcd") << "not a frame of this sequence";
   const RunResult r = batch("-input_dir " + synth_.string() + " -output_dir " + out.string() + " -shard 0/2");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("(removed 2 temporary file(s) an interrupted run left)"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(out / ("." + stem(0) + ".tmp99999.pcd")));
-  EXPECT_TRUE(fs::exists(out / ("." + stem(1) + ".tmp99999.pcd"))) << "shard 1's frame: not this process's";
-  EXPECT_FALSE(fs::exists(out / ("." + stem(2) + ".tmp99999.pcd")));
-  EXPECT_TRUE(fs::exists(out / ("." + stem(3) + ".tmp99999.pcd")));
+  EXPECT_FALSE(fs::exists(out / ("." + stem(0) + dead)));
+  EXPECT_TRUE(fs::exists(out / ("." + stem(1) + dead))) << "shard 1's frame: not this process's";
+  EXPECT_FALSE(fs::exists(out / ("." + stem(2) + dead)));
+  EXPECT_TRUE(fs::exists(out / ("." + stem(3) + dead)));
+  EXPECT_TRUE(fs::exists(out / live)) << "its writer is alive";
   EXPECT_TRUE(fs::exists(out / ".notes.tmp1.pcd"));
 }
 

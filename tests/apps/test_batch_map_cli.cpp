@@ -22,6 +22,8 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_cloud.h>
 
+#include "batch/frame_list.hpp"
+#include "batch/sequence_map.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/pcl/point_types.hpp"
 #include "common/test_paths.hpp"
@@ -189,6 +191,40 @@ TEST_F(BatchMap, SequenceWithPosesGivesAMapAndItsPictureAndAReRunThatSkipsEveryF
   EXPECT_NE(r.output.find("0 ok, 3 skipped, 0 failed"), std::string::npos) << r.output;
   EXPECT_TRUE(readText(map) == mapBytes) << "the re-run's map differs";
   EXPECT_TRUE(readText(root_ / "map.png") == pictureBytes) << "the re-run's picture differs";
+}
+
+TEST_F(BatchMap, AKilledRunsMapTemporariesAreRemovedAndAStoppedBuildWritesNothing) {
+  const fs::path seq = sequenceWith(forwardPoses(2.0));
+  const fs::path out = root_ / "out";
+  const fs::path map = root_ / "map.pcd";
+  // As kill -9 during the map's write leaves them: its writer's pid no longer lives.
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  const std::string dead = ".tmp" + std::to_string(child);
+  for (const char* extension : {".pcd", ".png"}) std::ofstream(root_ / (".map" + dead + extension)) << "half a map";
+  RunResult r = batch("-input_dir " + seq.string() + " -output_dir " + out.string() + " -map " + map.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("(removed 2 temporary file(s) an interrupted run left)"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(root_ / (".map" + dead + ".pcd")));
+  EXPECT_FALSE(fs::exists(root_ / (".map" + dead + ".png")));
+
+  // A stop asked during the build (SIGTERM, SIGINT) writes neither the map nor its picture.
+  apps::MapOptions options;
+  options.mapPath = (root_ / "stopped.pcd").string();
+  options.picturePath = (root_ / "stopped.png").string();
+  const std::vector<apps::Frame> frames = apps::framesFromDirectory(seq.string());
+  for (int stopAfter : {0, 2, kFrames}) {  // at once, between frames, just before the write
+    apps::SequenceMap sequence(options, frames, geometry::OutputFrame::Lidar, 0, 0);
+    for (const apps::Frame& frame : frames) sequence.frameWritten(frame, (out / (frame.name + ".pcd")).string());
+    int asked = 0;
+    const apps::MapResult result = sequence.build([&] { return asked++ >= stopAfter; });
+    EXPECT_FALSE(result.ok);
+    EXPECT_FALSE(result.written);
+    EXPECT_FALSE(fs::exists(options.mapPath)) << stopAfter;
+    EXPECT_FALSE(fs::exists(options.picturePath)) << stopAfter;
+  }
 }
 
 TEST_F(BatchMap, ThePosesMoveTheMapAndTheCloudsFrameDoesNot) {

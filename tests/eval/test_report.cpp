@@ -209,47 +209,6 @@ TEST(MethodMedians, KeepsAlphasAndTheSweepsBestApart) {
   EXPECT_EQ(medians[2].metrics.gtPixels, 200);
 }
 
-/// A fresh, empty directory for one test, removed afterwards.
-class ScratchDir : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lidar_sgm_report_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
-
-TEST_F(ScratchDir, WriteTextAtomicallyLeavesOnlyTheFile) {
-  const std::string path = (dir_ / "report.md").string();
-  writeTextAtomically(path, "old");
-  writeTextAtomically(path, "| a | b |\n");  // replaces
-  std::ifstream in(path);
-  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(content, "| a | b |\n");
-  int entries = 0;
-  for (const auto& entry : fs::directory_iterator(dir_)) {
-    ++entries;
-    EXPECT_EQ(entry.path().filename(), "report.md");
-  }
-  EXPECT_EQ(entries, 1);
-}
-
-TEST_F(ScratchDir, WriteTextAtomicallyRefusesAMissingDirectory) {
-  const std::string path = (dir_ / "missing" / "report.json").string();
-  try {
-    writeTextAtomically(path, "{}");
-    FAIL() << "expected an exception";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-  }
-  EXPECT_FALSE(fs::exists(path));
-  EXPECT_TRUE(fs::is_empty(dir_));
-}
-
 }  // namespace
 }  // namespace eval
 }  // namespace lidar_sgm

@@ -121,6 +121,15 @@ def test_calibration_from_arrays(calibration):
         lidar_sgm.Calibration(K=calibration.K, baseline=0.5, T_cam_lidar=np.ones((4, 4)))
     with pytest.raises(ValueError, match="image size must be positive"):
         lidar_sgm.Calibration(K=calibration.K, baseline=0.5).validate()  # no size yet
+    # A transform or an intrinsic matrix of the wrong shape is named with its shape.
+    with pytest.raises(ValueError, match=r"T_cam_lidar: expected a 4x4 matrix of numbers, got shape \(3, 4\) float64"):
+        lidar_sgm.Calibration(calibration.K, 0.5, calibration.T_cam_lidar[:3])
+    with pytest.raises(ValueError, match=r"K: expected a 3x3 matrix of numbers, got shape \(2, 3\) float64"):
+        lidar_sgm.Calibration(calibration.K[:2], 0.5)
+    with pytest.raises(ValueError, match=r"K: expected a 3x3 matrix of numbers, got a str"):
+        lidar_sgm.Calibration("K", 0.5)
+    made = lidar_sgm.Calibration(calibration.K.tolist(), 0.5, calibration.T_cam_lidar.astype(np.float32).tolist())
+    np.testing.assert_array_equal(made.K, calibration.K)
 
 
 def test_match(left, right):

@@ -230,8 +230,10 @@ check_clouds() {
       die "$1: frame $frame's cloud differs from the single-process run's"
   done
   local clouds
-  clouds="$(find "$tmp/out2" -type f ! -name 'manifest.*.jsonl' ! -name cloud_options.txt | wc -l)"
-  [ "$clouds" -eq "$FRAMES" ] || die "$1: the array's output holds $clouds files besides the manifests and cloud_options.txt," \
+  # The shards' lock files (.lidar_sgm_batch*.lock) stay: removing one would race with its next taker.
+  clouds="$(find "$tmp/out2" -type f ! -name 'manifest.*.jsonl' ! -name cloud_options.txt \
+    ! -name '.lidar_sgm_batch*.lock' | wc -l)"
+  [ "$clouds" -eq "$FRAMES" ] || die "$1: the array's output holds $clouds files besides the manifests, cloud_options.txt and the locks," \
     "not $FRAMES clouds: $(ls -A "$tmp/out2")"
 }
 

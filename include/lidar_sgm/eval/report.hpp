@@ -100,10 +100,6 @@ std::string markdownTable(const ProtocolResult& result);
 /// "correct","rmse",...}]}}]} (the sweeps hold the disparity metrics only).
 nlohmann::json toJson(const std::vector<ProtocolResult>& results);
 
-/// Writes `text` to a temporary file in the same directory and renames it over `path`, so a
-/// crash never leaves a partial file. Throws std::runtime_error naming `path` when its directory
-/// does not exist or writing fails (no temporary file is left behind).
-void writeTextAtomically(const std::string& path, const std::string& text);
 
 }  // namespace eval
 }  // namespace lidar_sgm

@@ -39,6 +39,10 @@ pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::si
 /// inconsistent counts, unsupported types), more than `maxPoints` points, fewer bytes than
 /// the header declares, an ASCII value that does not parse (naming the line), or missing x/y/z.
 pcl::PointCloud<pcl::PointXYZI> readPcdOrPly(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
+/// Checks that the .pcd or .ply file at `path` is whole: its header reads and its body holds
+/// every point the header declares, as a write cut short (a full disk, a killed writer that
+/// wrote in place) would not. Throws std::runtime_error "cannot read cloud 'path': problem".
+void checkCloudFile(const std::string& path);
 /// A PCD file's bytes (any of the three encodings) already in memory, read as readPcdOrPly()
 /// reads a .pcd file (through the same parser); `source` names them in messages.
 pcl::PointCloud<pcl::PointXYZI> readPcdFromBuffer(const void* data, std::size_t size,

@@ -1,5 +1,6 @@
-#include "common/output_transaction.hpp"
+#include "lidar_sgm/io/output_transaction.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -7,15 +8,16 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <regex>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
+
+#include "lidar_sgm/io/atomic_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace lidar_sgm {
-namespace apps {
+namespace io {
 namespace {
 
 // The names the signal handler removes. Fixed storage: a handler may only call async-signal-safe
@@ -51,51 +53,40 @@ void unregisterAll() {
   std::signal(SIGTERM, SIG_DFL);
 }
 
-/// ".<stem>.tmp<pid><ext>": the temporary a write of `path` goes through (src/io/atomic_file.cpp
-/// names the library's the same way).
-fs::path temporaryOf(const fs::path& path) {
-  fs::path temporary(path);
-  temporary.replace_filename("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                             path.extension().string());
-  return temporary;
-}
-
-std::string regexEscaped(const std::string& text) {
-  static const std::regex special(R"([.^$|()\[\]{}*+?\\])");
-  return std::regex_replace(text, special, R"(\$&)");
-}
-
-bool processAlive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH); }
+/// The temporary a write of `path` goes through in this process (io::temporaryPathFor's name).
+fs::path temporaryOf(const fs::path& path) { return io::temporaryPathFor(path.string()); }
 
 /// Creates and removes a file in `folder`: the only check that answers for permissions, ACLs,
 /// read-only mounts and a root user alike.
 void probeWritable(const std::string& output, const fs::path& folder) {
   const fs::path probe = folder / (".lidar_sgm_probe.tmp" + std::to_string(::getpid()));
-  std::ofstream file(probe);
-  const bool ok = static_cast<bool>(file);
-  file.close();
-  std::error_code ignored;
-  fs::remove(probe, ignored);
-  if (!ok) {
-    throw std::invalid_argument("cannot write '" + output + "': the folder '" + folder.string() +
-                                "' is not writable (" + std::strerror(errno) + ")");
+  // open(2) itself, so that errno is the kernel's answer (EPERM, EROFS, EACCES...), not a later call's.
+  const int descriptor = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  const int error = errno;
+  if (descriptor >= 0) {
+    ::close(descriptor);
+    ::unlink(probe.c_str());
+    return;
   }
+  throw std::invalid_argument("cannot write '" + output + "': the folder '" + folder.string() +
+                              "' is not writable (" + std::strerror(error) + ")");
 }
 
 }  // namespace
 
 std::size_t removeDeadRunTemporaries(const std::string& output) {
   const fs::path path = fs::absolute(output).lexically_normal();
-  // ".stem.tmpPID.ext", or the library writer's own temporary of that file: "..stem.tmpPID.tmpPID.ext".
-  const std::regex name(R"(\.?\.)" + regexEscaped(path.stem().string()) + R"(\.tmp([0-9]+)(\.tmp[0-9]+)?)" +
-                        regexEscaped(path.extension().string()));
+  const std::string target = path.filename().string();
   std::size_t removed = 0;
   std::error_code ec;
   for (fs::directory_iterator it(path.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
-    std::smatch match;
-    const std::string file = it->path().filename().string();
-    if (!std::regex_match(file, match, name)) continue;
-    if (processAlive(std::stol(match[1].str().substr(0, 18)))) continue;
+    // ".stem.tmpPID.ext", or a writer's own temporary of that file: "..stem.tmpPID.tmpPID2.ext".
+    const std::optional<io::TemporaryName> name = io::parseTemporaryName(it->path().filename().string());
+    if (!name) continue;
+    const std::optional<io::TemporaryName> outer =
+        name->output == target ? std::nullopt : io::parseTemporaryName(name->output);
+    if (name->output != target && !(outer && outer->output == target)) continue;
+    if (io::processAlive(name->pid) || (outer && io::processAlive(outer->pid))) continue;
     std::error_code removeError;
     if (fs::remove(it->path(), removeError)) ++removed;
   }
@@ -166,5 +157,5 @@ void OutputTransaction::commit() {
   committed_ = true;
 }
 
-}  // namespace apps
+}  // namespace io
 }  // namespace lidar_sgm

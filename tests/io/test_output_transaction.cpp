@@ -11,10 +11,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "common/output_transaction.hpp"
+#include "lidar_sgm/io/output_transaction.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace io {
 namespace {
 namespace fs = std::filesystem;
 
@@ -153,5 +153,5 @@ TEST_F(OutputTransactionTest, SigtermRemovesTheTemporariesAndKillsTheRun) {
 }
 
 }  // namespace
-}  // namespace apps
+}  // namespace io
 }  // namespace lidar_sgm

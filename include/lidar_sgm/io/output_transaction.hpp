@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace lidar_sgm {
-namespace apps {
+namespace io {
 
 class OutputTransaction {
  public:
@@ -57,5 +57,5 @@ class OutputTransaction {
 /// removed; returns how many. A temporary of a live process is left alone.
 std::size_t removeDeadRunTemporaries(const std::string& output);
 
-}  // namespace apps
+}  // namespace io
 }  // namespace lidar_sgm
