@@ -14,6 +14,12 @@ namespace {
 std::atomic<long> allocations{0};
 }  // namespace
 
+// g++ 12 at -O1 and above sees a `new` inlined into a caller and then our free() in the replaced
+// delete, and calls them mismatched: they are malloc/free underneath, as the replacement intends.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
 void* operator new(std::size_t size) {
   ++allocations;
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
@@ -21,6 +27,9 @@ void* operator new(std::size_t size) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 namespace lidar_sgm {
 namespace {
