@@ -19,10 +19,10 @@
 #include <pcl/console/print.h>
 
 #include "batch/batch_frame.hpp"
-#include "batch/frame_list.hpp"
-#include "batch/frame_runner.hpp"
-#include "batch/manifest.hpp"
-#include "batch/output_lock.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_runner.hpp"
+#include "lidar_sgm/sequence/manifest.hpp"
+#include "lidar_sgm/sequence/output_lock.hpp"
 #include "batch/output_state.hpp"
 #include "batch/progress.hpp"
 #include "batch/sequence_map.hpp"
@@ -38,8 +38,8 @@
 
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
-using lidar_sgm::apps::Frame;
-using lidar_sgm::apps::FrameRecord;
+using lidar_sgm::sequence::Frame;
+using lidar_sgm::sequence::FrameRecord;
 
 namespace {
 
@@ -155,7 +155,7 @@ int run(int argc, char** argv) {
   const std::string outDir = args.text("output_dir", "");
   if (outDir.empty()) throw std::invalid_argument("-output_dir OUT is required");
   lidar_sgm::apps::checkDensifyOptions(args);  // every bad option before any frame is read
-  const lidar_sgm::apps::Shard shard = lidar_sgm::apps::parseShard(args.text("shard", "0/1"));
+  const lidar_sgm::sequence::Shard shard = lidar_sgm::sequence::parseShard(args.text("shard", "0/1"));
   const lidar_sgm::apps::MapOptions mapOptions = lidar_sgm::apps::mapOptionsFrom(args, shard);
   const int progressEvery = args.integer("progress", kDefaultProgressEvery);
   if (progressEvery < 1) throw std::invalid_argument("option -progress: must be >= 1 (frames)");
@@ -176,13 +176,13 @@ int run(int argc, char** argv) {
   if (args.has("image_size")) lidar_sgm::apps::parseImageSize(args.text("image_size", ""), width, height);
 
   const std::string inputPath = args.has("list") ? args.text("list", "") : args.text("input_dir", "");
-  const std::vector<Frame> all = args.has("list") ? lidar_sgm::apps::framesFromList(inputPath)
-                                                  : lidar_sgm::apps::framesFromDirectory(inputPath);
-  const lidar_sgm::apps::Layout layout =
-      args.has("list") ? lidar_sgm::apps::Layout::ListFile : lidar_sgm::apps::directoryLayout(inputPath);
-  std::printf("Input %s: %s, %zu frame(s)\n", inputPath.c_str(), lidar_sgm::apps::layoutName(layout), all.size());
+  const std::vector<Frame> all = args.has("list") ? lidar_sgm::sequence::framesFromList(inputPath)
+                                                  : lidar_sgm::sequence::framesFromDirectory(inputPath);
+  const lidar_sgm::sequence::Layout layout =
+      args.has("list") ? lidar_sgm::sequence::Layout::ListFile : lidar_sgm::sequence::directoryLayout(inputPath);
+  std::printf("Input %s: %s, %zu frame(s)\n", inputPath.c_str(), lidar_sgm::sequence::layoutName(layout), all.size());
   std::fflush(stdout);
-  const std::vector<Frame> frames = lidar_sgm::apps::framesOfShard(all, shard);
+  const std::vector<Frame> frames = lidar_sgm::sequence::framesOfShard(all, shard);
   std::optional<lidar_sgm::apps::SequenceMap> map;
   if (!mapOptions.mapPath.empty()) {
     map.emplace(mapOptions, all, lidar_sgm::apps::outputOptionsFrom(args).frame, width, height);
@@ -190,7 +190,7 @@ int run(int argc, char** argv) {
   }
   fs::create_directories(outDir);
   // Before anything in the folder is read or changed: one run per folder and shard.
-  const lidar_sgm::apps::OutputFolderLock lock(outDir, shard);
+  const lidar_sgm::sequence::OutputFolderLock lock(outDir, shard);
   // The options that make a cloud's bytes: the method's and the output's, not how the run is
   // spread (-threads, -backend: every backend gives the same bytes).
   std::set<std::string> cloudOptions = joined(lidar_sgm::apps::densifyValueOptions(), lidar_sgm::apps::densifyFlagOptions());
@@ -212,7 +212,7 @@ int run(int argc, char** argv) {
   // What earlier runs recorded of the frames this one will skip, before its manifest is replaced.
   const std::map<std::string, FrameRecord> earlierRecords =
       args.has("overwrite") ? std::map<std::string, FrameRecord>{} : lidar_sgm::apps::earlierFrameRecords(outDir);
-  lidar_sgm::apps::Manifest manifest((fs::path(outDir) / manifestName).string());
+  lidar_sgm::sequence::Manifest manifest((fs::path(outDir) / manifestName).string());
   std::printf("%zu frame(s)", frames.size());
   if (shard.count > 1) std::printf(" (shard %d/%d of %zu)", shard.index, shard.count, all.size());
   std::printf(", output %s", outDir.c_str());
@@ -265,7 +265,7 @@ int run(int argc, char** argv) {
 
   lidar_sgm::apps::FrameCounts counts;
   std::uintmax_t bytesWritten = 0;
-  lidar_sgm::apps::FrameTimings summed;
+  lidar_sgm::sequence::FrameTimings summed;
   lidar_sgm::apps::Progress progress(stderr, isatty(fileno(stderr)) != 0, frames.size(), progressEvery);
   // Records arrive here in frame order, on this thread: the log and the manifest read the same
   // whatever -jobs.
@@ -297,7 +297,7 @@ int run(int argc, char** argv) {
     manifest.append(record);
     progress.update(counts, runTimer.elapsedMs() / 1000.0);
   };
-  lidar_sgm::apps::runFramesInOrder(frames.size(), jobs, work, done, [] { return stopSignal != 0; });
+  lidar_sgm::sequence::runFramesInOrder(frames.size(), jobs, work, done, [] { return stopSignal != 0; });
   progress.finish();
 
   const double seconds = runTimer.elapsedMs() / 1000.0;

@@ -18,6 +18,7 @@
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "densify/densify_options.hpp"
+#include "densify/frame_loader.hpp"
 #include "densify/voxel_filter.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
@@ -315,41 +316,19 @@ int run(int argc, char** argv) {
   // Folders and permissions checked now, before any work; nothing replaced until all are written.
   lidar_sgm::io::OutputTransaction transaction(outputs);
 
-  Timer loadTimer;
-  std::printf("Loading %s", inputPath.c_str());
-  std::fflush(stdout);
-  const pcl::PointCloud<pcl::PointXYZI>::Ptr scan(new pcl::PointCloud<pcl::PointXYZI>(lidar_sgm::io::readCloud(inputPath, lidar_sgm::apps::maxPointsFrom(args))));
-  std::printf(" [done, %.0f ms : %zu points]\n", loadTimer.elapsedMs(), scan->size());
-  if (scan->empty()) throw std::invalid_argument("the input cloud '" + inputPath + "' has no points");
-
-  Timer calibTimer;
-  std::printf("Loading %s", calibPath.c_str());
-  const lidar_sgm::geometry::StereoCalibration calibration = lidar_sgm::io::readCalibration(calibPath, width, height);
-  std::printf(" [done, %.0f ms : %s]\n", calibTimer.elapsedMs(), lidar_sgm::geometry::describe(calibration).c_str());
-  if (args.has("image_size") && (calibration.width != width || calibration.height != height)) {
-    throw std::invalid_argument("-image_size " + args.text("image_size", "") + " disagrees with the calibration '" +
-                                calibPath + "', which is for " + std::to_string(calibration.width) + "x" +
-                                std::to_string(calibration.height));
-  }
-
-  cv::Mat left;
-  cv::Mat right;
-  if (!leftPath.empty()) {
-    Timer imageTimer;
-    std::printf("Loading %s", leftPath.c_str());
-    left = lidar_sgm::io::readImage(leftPath);
-    if (!rightPath.empty()) {
-      std::printf(", %s", rightPath.c_str());
-      right = lidar_sgm::io::readImage(rightPath);
-      if (right.size() != left.size()) {
-        throw std::invalid_argument("the left image is " + std::to_string(left.cols) + "x" + std::to_string(left.rows) +
-                                    " but the right image is " + std::to_string(right.cols) + "x" +
-                                    std::to_string(right.rows));
-      }
-    }
-    std::printf(" [done, %.0f ms : %dx%d]\n", imageTimer.elapsedMs(), left.cols, left.rows);
-    lidar_sgm::apps::requireOrganizedImage(leftPath, left);
-  }
+  lidar_sgm::apps::FrameFiles frameFiles;
+  frameFiles.scan = inputPath;
+  frameFiles.calib = calibPath;
+  frameFiles.left = leftPath;
+  frameFiles.right = rightPath;
+  frameFiles.width = width;
+  frameFiles.height = height;
+  frameFiles.maxPoints = lidar_sgm::apps::maxPointsFrom(args);
+  const lidar_sgm::apps::LoadedFrame loaded = lidar_sgm::apps::loadFrame(frameFiles, stdout);
+  const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan = loaded.scan;
+  const lidar_sgm::geometry::StereoCalibration& calibration = loaded.calibration;
+  const cv::Mat& left = loaded.left;
+  const cv::Mat& right = loaded.right;
   // Colored output when an image can color it; with the confidence field unless it is off.
   if (args.has("no_confidence")) {
     return left.empty() ? densify<pcl::PointXYZ>(args, scan, calibration, left, right, transaction)

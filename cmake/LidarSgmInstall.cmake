@@ -12,7 +12,7 @@ set(LIDAR_SGM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/lidar_sgm"
 
 # The public libraries, in dependency order (each may use only those before it): the Config
 # relies on this order when it loads the targets.
-set(LIDAR_SGM_PACKAGE_COMPONENTS core geometry pipeline io pcl open3d)
+set(LIDAR_SGM_PACKAGE_COMPONENTS core geometry pipeline io pcl sequence open3d)
 
 # 0.x: every minor release may change the ABI (the Matcher class, the Densifier, the PCL class
 # layout all still move), so the soname carries major.minor; from 1.0 on, the major alone.

@@ -4,9 +4,10 @@
 #include <stdexcept>
 #include <utility>
 
-#include "batch/frame_calibration.hpp"
+#include "lidar_sgm/sequence/frame_calibration.hpp"
 #include "common/timer.hpp"
 #include "densify/densify_options.hpp"
+#include "densify/frame_loader.hpp"
 #include "densify/voxel_filter.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
@@ -16,34 +17,26 @@ namespace lidar_sgm {
 namespace apps {
 namespace {
 
-struct FrameData {
-  pcl::PointCloud<pcl::PointXYZI>::Ptr scan;
-  geometry::StereoCalibration calibration;
-  cv::Mat left;
-  cv::Mat right;
-};
-
 std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
-/// The checks of lidar_sgm_densify's loading, in its order, and the sequence's image size.
-FrameData load(const Frame& frame, int width, int height, std::uint64_t maxPoints,
+/// lidar_sgm_densify's loading (loadFrame), then the sequence's image size.
+LoadedFrame load(const sequence::Frame& frame, int width, int height, std::uint64_t maxPoints,
                const std::map<std::string, CalibrationImage>& shared) {
-  FrameData data;
-  data.scan.reset(new pcl::PointCloud<pcl::PointXYZI>(io::readCloud(frame.scan, maxPoints)));
-  if (data.scan->empty()) throw std::invalid_argument("the input cloud '" + frame.scan + "' has no points");
-  data.calibration = readFrameCalibration(frame, width, height);
-  if (width > 0 && (data.calibration.width != width || data.calibration.height != height)) {
-    throw std::invalid_argument("-image_size " + sizeText(width, height) + " disagrees with the calibration '" +
-                                frame.calib + "', which is for " +
-                                sizeText(data.calibration.width, data.calibration.height));
-  }
-  if (!frame.left.empty()) {
-    data.left = io::readImage(frame.left);
-    requireOrganizedImage(frame.left, data.left);
-  }
-  const auto sequence = shared.find(frame.calib);
-  if (sequence != shared.end() && data.calibration.width == 0 && data.calibration.height == 0) {
-    const CalibrationImage& size = sequence->second;
+  FrameFiles files;
+  files.scan = frame.scan;
+  files.calib = frame.calib;
+  files.left = frame.left;
+  files.right = frame.right;
+  files.width = width;
+  files.height = height;
+  files.maxPoints = maxPoints;
+  files.readCalibration = [&frame](const std::string&, int w, int h) {
+    return sequence::readFrameCalibration(frame, w, h);
+  };
+  LoadedFrame data = loadFrame(files);
+  const auto sequenceSize = shared.find(frame.calib);
+  if (sequenceSize != shared.end() && data.calibration.width == 0 && data.calibration.height == 0) {
+    const CalibrationImage& size = sequenceSize->second;
     if (!data.left.empty() && (data.left.cols != size.width || data.left.rows != size.height)) {
       throw std::invalid_argument("the left image '" + frame.left + "' is " + sizeText(data.left.cols, data.left.rows) +
                                   " but the calibration '" + frame.calib + "' is the sequence's, whose images are " +
@@ -53,19 +46,12 @@ FrameData load(const Frame& frame, int width, int height, std::uint64_t maxPoint
     data.calibration.width = size.width;
     data.calibration.height = size.height;
   }
-  if (!frame.left.empty() && !frame.right.empty()) {
-    data.right = io::readImage(frame.right);
-    if (data.right.size() != data.left.size()) {
-      throw std::invalid_argument("the left image '" + frame.left + "' is " + sizeText(data.left.cols, data.left.rows) +
-                                  " but the right image is " + sizeText(data.right.cols, data.right.rows));
-    }
-  }
   return data;
 }
 
 template <typename PointOutT>
 FrameResult densifyWith(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, const Arguments& args, int threads,
-                        const FrameData& data, const std::string& outPath, FrameTimings ms) {
+                        const LoadedFrame& data, const std::string& outPath, sequence::FrameTimings ms) {
   sgm.setInputCloud(data.scan);
   sgm.setCalibration(data.calibration);
   configureDensification(sgm, args);
@@ -90,11 +76,11 @@ FrameResult densifyWith(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, const 
 
 }  // namespace
 
-std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<Frame>& frames) {
+std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<sequence::Frame>& frames) {
   std::map<std::string, int> uses;
-  for (const Frame& frame : frames) ++uses[frame.calib];
+  for (const sequence::Frame& frame : frames) ++uses[frame.calib];
   std::map<std::string, CalibrationImage> sizes;
-  for (const Frame& frame : frames) {
+  for (const sequence::Frame& frame : frames) {
     if (frame.left.empty() || uses[frame.calib] < 2 || sizes.count(frame.calib) > 0) continue;
     try {
       const cv::Mat image = io::readImage(frame.left);
@@ -129,10 +115,10 @@ FrameDensifier::FrameDensifier(const Arguments& args, int width, int height, int
 
 FrameDensifier::~FrameDensifier() = default;
 
-FrameResult FrameDensifier::densify(const Frame& frame, const std::string& outPath) {
+FrameResult FrameDensifier::densify(const sequence::Frame& frame, const std::string& outPath) {
   const Timer loadTimer;
-  const FrameData data = load(frame, width_, height_, maxPointsFrom(args_), shared_);
-  FrameTimings ms;
+  const LoadedFrame data = load(frame, width_, height_, maxPointsFrom(args_), shared_);
+  sequence::FrameTimings ms;
   ms.load = loadTimer.elapsedMs();
   Densifications& d = *densifications_;
   if (args_.has("no_confidence")) {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "batch/frame_list.hpp"
-#include "batch/manifest.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
+#include "lidar_sgm/sequence/manifest.hpp"
 #include "common/arguments.hpp"
 
 namespace lidar_sgm {
@@ -17,7 +17,7 @@ namespace apps {
 struct FrameResult {
   std::size_t points = 0;
   std::uintmax_t bytes = 0;  ///< the written cloud's file size
-  FrameTimings ms;
+  sequence::FrameTimings ms;
 };
 
 /// The image size a calibration file is used with, and the image that fixed it.
@@ -31,7 +31,7 @@ struct CalibrationImage {
 /// of the first of their left images (in `frames` order) that can be read. One calibration fits one
 /// image size: a frame of another size is refused rather than densified with intrinsics that are
 /// not its own (KITTI's odometry calib.txt carries no size to check against).
-std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<Frame>& frames);
+std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<sequence::Frame>& frames);
 
 /// Densifies frames one after another with the method options of `args` (densify_options.hpp),
 /// keeping one SGMDensification per output point type so that the matcher's buffers are
@@ -52,7 +52,7 @@ class FrameDensifier {
   /// Densifies `frame` and writes the cloud to `outPath` (.pcd or .ply, -format's encoding)
   /// through a temporary file renamed when complete. Throws (std::exception) naming the file for
   /// a missing or bad input, an empty cloud or a failed write; nothing is left at `outPath` then.
-  FrameResult densify(const Frame& frame, const std::string& outPath);
+  FrameResult densify(const sequence::Frame& frame, const std::string& outPath);
 
  private:
   struct Densifications;

@@ -9,20 +9,11 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "lidar_sgm/io/color_map.hpp"
+
 namespace lidar_sgm {
 namespace apps {
 namespace {
-
-/// OpenCV's turbo table for 0..255, BGR.
-std::array<cv::Vec3b, 256> turboTable() {
-  cv::Mat ramp(1, 256, CV_8UC1);
-  for (int i = 0; i < 256; ++i) ramp.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
-  cv::Mat colored;
-  cv::applyColorMap(ramp, colored, cv::COLORMAP_TURBO);
-  std::array<cv::Vec3b, 256> table{};
-  for (int i = 0; i < 256; ++i) table[static_cast<std::size_t>(i)] = colored.at<cv::Vec3b>(0, i);
-  return table;
-}
 
 struct Extent {
   double minX = std::numeric_limits<double>::infinity();
@@ -70,7 +61,7 @@ TopView renderTopView(const pcl::PointCloud<PointXYZRGBConfidence>& map, bool us
   view.image = cv::Mat(height, width, CV_8UC3, cv::Scalar(0, 0, 0));
 
   cv::Mat top(height, width, CV_32FC1, cv::Scalar(-std::numeric_limits<float>::infinity()));
-  const std::array<cv::Vec3b, 256> turbo = turboTable();
+  const std::array<cv::Vec3b, 256>& turbo = io::turboColors();
   const double heightRange = maxHeight - minHeight;
   for (const PointXYZRGBConfidence& p : map) {
     const int u = std::min(column(p.x), width - 1);

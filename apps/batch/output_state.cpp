@@ -103,7 +103,7 @@ std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs) {
   return removed;
 }
 
-std::string untrustedCloudReason(const std::string& path, const std::map<std::string, FrameRecord>& earlier,
+std::string untrustedCloudReason(const std::string& path, const std::map<std::string, sequence::FrameRecord>& earlier,
                                  const std::string& frame) {
   std::error_code ec;
   const std::uintmax_t bytes = fs::file_size(path, ec);
@@ -123,7 +123,7 @@ std::string untrustedCloudReason(const std::string& path, const std::map<std::st
   return "";
 }
 
-std::map<std::string, FrameRecord> earlierFrameRecords(const std::string& outDir) {
+std::map<std::string, sequence::FrameRecord> earlierFrameRecords(const std::string& outDir) {
   static const std::regex manifestName(R"(manifest(\.shard-[0-9]+-of-[0-9]+)?\.jsonl)");
   std::vector<std::pair<fs::file_time_type, fs::path>> manifests;
   std::error_code ec;
@@ -134,11 +134,11 @@ std::map<std::string, FrameRecord> earlierFrameRecords(const std::string& outDir
     if (!timeError) manifests.emplace_back(written, it->path());
   }
   std::sort(manifests.begin(), manifests.end());  // oldest first: later records replace earlier ones
-  std::map<std::string, FrameRecord> records;
+  std::map<std::string, sequence::FrameRecord> records;
   for (const auto& manifest : manifests) {
     std::ifstream in(manifest.second);
     for (std::string line; std::getline(in, line);) {
-      const std::optional<FrameRecord> record = fromJsonLine(line);
+      const std::optional<sequence::FrameRecord> record = sequence::fromJsonLine(line);
       if (!record) continue;
       const bool carriesStatistics = record->points > 0 || record->ms.total() > 0.0;
       if (record->status == "ok" || (record->status == "skipped" && carriesStatistics)) {
@@ -149,9 +149,9 @@ std::map<std::string, FrameRecord> earlierFrameRecords(const std::string& outDir
   return records;
 }
 
-FrameRecord skippedFrameRecord(const std::string& frame, std::uintmax_t bytes,
-                               const std::map<std::string, FrameRecord>& earlier) {
-  FrameRecord record;
+sequence::FrameRecord skippedFrameRecord(const std::string& frame, std::uintmax_t bytes,
+                               const std::map<std::string, sequence::FrameRecord>& earlier) {
+  sequence::FrameRecord record;
   const auto found = earlier.find(frame);
   if (found != earlier.end() && found->second.bytes == bytes) record = found->second;
   record.frame = frame;

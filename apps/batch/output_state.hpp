@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "batch/manifest.hpp"
+#include "lidar_sgm/sequence/manifest.hpp"
 #include "common/arguments.hpp"
 
 namespace lidar_sgm {
@@ -40,7 +40,7 @@ std::size_t removeStaleTemporaries(const std::vector<std::string>& outputs);
 /// Why the existing cloud `path` of frame `frame` cannot be trusted as done, or "" when it can:
 /// its size differs from what `earlier` (the manifests) records of it, or it is not whole
 /// (io::checkCloudFile: a cloud cut short by a full disk, or written by other means and broken).
-std::string untrustedCloudReason(const std::string& path, const std::map<std::string, FrameRecord>& earlier,
+std::string untrustedCloudReason(const std::string& path, const std::map<std::string, sequence::FrameRecord>& earlier,
                                  const std::string& frame);
 
 /// What the manifests in `outDir` (manifest.jsonl and the shards' manifest.shard-K-of-N.jsonl)
@@ -48,13 +48,13 @@ std::string untrustedCloudReason(const std::string& path, const std::map<std::st
 /// "skipped" ones that carry such a record's statistics. Where several manifests have a frame,
 /// the last written (file time) wins. Read before this run's manifest replaces its own;
 /// unreadable files and lines are passed over (they are statistics, not state).
-std::map<std::string, FrameRecord> earlierFrameRecords(const std::string& outDir);
+std::map<std::string, sequence::FrameRecord> earlierFrameRecords(const std::string& outDir);
 
 /// The record of frame `frame`, skipped because its cloud of `bytes` exists: status "skipped",
 /// with the points and timings of the run that made the cloud when `earlier` has a record of it
 /// of the same size (else 0: a cloud made or replaced by other means has no statistics here).
-FrameRecord skippedFrameRecord(const std::string& frame, std::uintmax_t bytes,
-                               const std::map<std::string, FrameRecord>& earlier);
+sequence::FrameRecord skippedFrameRecord(const std::string& frame, std::uintmax_t bytes,
+                               const std::map<std::string, sequence::FrameRecord>& earlier);
 
 }  // namespace apps
 }  // namespace lidar_sgm

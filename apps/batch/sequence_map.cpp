@@ -7,12 +7,12 @@
 #include <stdexcept>
 #include <utility>
 
-#include "batch/frame_calibration.hpp"
-#include "batch/frame_to_world.hpp"
-#include "batch/map_cloud.hpp"
+#include "lidar_sgm/sequence/frame_calibration.hpp"
+#include "lidar_sgm/sequence/frame_to_world.hpp"
+#include "lidar_sgm/sequence/map_cloud.hpp"
 #include "batch/map_picture.hpp"
-#include "batch/poses.hpp"
-#include "batch/voxel_map.hpp"
+#include "lidar_sgm/sequence/poses.hpp"
+#include "lidar_sgm/sequence/voxel_map.hpp"
 #include "common/output_paths.hpp"
 #include "common/timer.hpp"
 #include "lidar_sgm/io/image_io.hpp"
@@ -59,7 +59,7 @@ std::string mapOptionsHelp() {
          "                           its OXTS packets oxts/data/*.txt (with the date's calib_imu_to_velo.txt)\n";
 }
 
-MapOptions mapOptionsFrom(const Arguments& args, const Shard& shard) {
+MapOptions mapOptionsFrom(const Arguments& args, const sequence::Shard& shard) {
   MapOptions options;
   if (!args.has("map")) {
     for (const char* name : {"map_voxel", "map_picture", "poses"}) {
@@ -91,7 +91,7 @@ MapOptions mapOptionsFrom(const Arguments& args, const Shard& shard) {
   return options;
 }
 
-SequenceMap::SequenceMap(const MapOptions& options, const std::vector<Frame>& frames,
+SequenceMap::SequenceMap(const MapOptions& options, const std::vector<sequence::Frame>& frames,
                          geometry::OutputFrame cloudFrame, int width, int height)
     : options_(options),
       frames_(frames),
@@ -99,13 +99,13 @@ SequenceMap::SequenceMap(const MapOptions& options, const std::vector<Frame>& fr
       cloudFrame_(cloudFrame),
       width_(width),
       height_(height) {
-  SequencePoses poses = posesOfSequence(frames, options.posesPath);
+  sequence::SequencePoses poses = sequence::posesOfSequence(frames, options.posesPath);
   poses_ = std::move(poses.poses);
   posesSource_ = std::move(poses.source);
   for (std::size_t i = 0; i < frames_.size(); ++i) indexOf_.emplace(frames_[i].name, i);
 }
 
-void SequenceMap::frameWritten(const Frame& frame, const std::string& cloudPath) {
+void SequenceMap::frameWritten(const sequence::Frame& frame, const std::string& cloudPath) {
   const auto found = indexOf_.find(frame.name);
   if (found == indexOf_.end()) throw std::logic_error("frame '" + frame.name + "' is not of the map's sequence");
   cloudPaths_[found->second] = cloudPath;
@@ -115,12 +115,12 @@ MapResult SequenceMap::build(const std::function<bool()>& stop) const {
   MapResult result;
   try {
     const Timer timer;
-    VoxelMap map(options_.voxelSize);
+    sequence::VoxelMap map(options_.voxelSize);
     std::map<std::string, FrameGeometry> geometries;  // by calibration file
     std::vector<std::string> leftOut;
     for (std::size_t i = 0; i < frames_.size(); ++i) {
       if (stop()) return stoppedResult();
-      const Frame& frame = frames_[i];
+      const sequence::Frame& frame = frames_[i];
       if (cloudPaths_[i].empty()) {
         leftOut.push_back(frame.name);
         continue;
@@ -128,16 +128,16 @@ MapResult SequenceMap::build(const std::function<bool()>& stop) const {
       auto known = geometries.find(frame.calib);
       if (known == geometries.end()) {
         FrameGeometry geometry;
-        geometry.calibration = readFrameCalibration(frame, width_, height_);
-        geometry.poseCameraFromLidar = poseCameraFromLidar(frame, geometry.calibration);
+        geometry.calibration = sequence::readFrameCalibration(frame, width_, height_);
+        geometry.poseCameraFromLidar = sequence::poseCameraFromLidar(frame, geometry.calibration);
         known = geometries.emplace(frame.calib, std::move(geometry)).first;
       }
       const FrameGeometry& g = known->second;
-      map.add(readFrameCloud(cloudPaths_[i]), cloudToWorld(poses_[i], g.poseCameraFromLidar, g.calibration, cloudFrame_));
+      map.add(sequence::readFrameCloud(cloudPaths_[i]), sequence::cloudToWorld(poses_[i], g.poseCameraFromLidar, g.calibration, cloudFrame_));
     }
     if (map.size() == 0) throw std::runtime_error("no frame's cloud to merge");
     if (stop()) return stoppedResult();
-    writeMapCloud(options_.mapPath, map);
+    sequence::writeMapCloud(options_.mapPath, map);
     std::vector<Eigen::Vector3d> trajectory;
     for (const Eigen::Isometry3d& pose : poses_) trajectory.push_back(pose.translation());
     TopViewOptions view;

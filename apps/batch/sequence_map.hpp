@@ -11,7 +11,7 @@
 
 #include <Eigen/Geometry>
 
-#include "batch/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
 #include "common/arguments.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
 
@@ -32,7 +32,7 @@ std::string mapOptionsHelp();
 /// The options, checked before any frame is read (std::invalid_argument names the bad one):
 /// -map's file type, -map_picture's (.png), -map_voxel > 0, the map options without -map, and
 /// -map with a shard of several (the map needs every frame: run it after the shards, 0/1).
-MapOptions mapOptionsFrom(const Arguments& args, const Shard& shard);
+MapOptions mapOptionsFrom(const Arguments& args, const sequence::Shard& shard);
 
 /// What the map's line of the summary says.
 struct MapResult {
@@ -50,12 +50,12 @@ class SequenceMap {
   /// `height`: -image_size (0: from the calibration). Reads the poses now: throws
   /// std::invalid_argument for missing poses, a bad poses file or OXTS packet, a count other than
   /// the frame count, or frames of several odometry sequences.
-  SequenceMap(const MapOptions& options, const std::vector<Frame>& frames, geometry::OutputFrame cloudFrame,
+  SequenceMap(const MapOptions& options, const std::vector<sequence::Frame>& frames, geometry::OutputFrame cloudFrame,
               int width, int height);
 
   /// `frame`'s cloud is complete at `cloudPath`. A frame never announced (failed, or not run)
   /// is left out of the map and reported by build().
-  void frameWritten(const Frame& frame, const std::string& cloudPath);
+  void frameWritten(const sequence::Frame& frame, const std::string& cloudPath);
 
   /// Builds and writes the map and its picture (atomically), reporting left-out frames and
   /// errors on stderr. Never throws: an error is in the result.
@@ -68,7 +68,7 @@ class SequenceMap {
 
  private:
   MapOptions options_;
-  std::vector<Frame> frames_;
+  std::vector<sequence::Frame> frames_;
   std::vector<Eigen::Isometry3d> poses_;
   std::string posesSource_;
   std::vector<std::string> cloudPaths_;  ///< per frame; empty until announced

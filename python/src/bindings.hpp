@@ -11,6 +11,7 @@ void bindIo(pybind11::module_& module);           ///< read_kitti_bin, read_clou
 void bindDensifier(pybind11::module_& module);    ///< Densifier, DensifyResult
 void bindMatch(pybind11::module_& module);        ///< match
 void bindCloudWriter(pybind11::module_& module);  ///< write_cloud
+void bindSequence(pybind11::module_& module);     ///< Frame, frames, read_frame_calibration, sequence_poses, VoxelMap
 
 }  // namespace python
 }  // namespace lidar_sgm

@@ -17,6 +17,7 @@ PYBIND11_MODULE(_lidar_sgm, m) {
   lidar_sgm::python::bindDensifier(m);
   lidar_sgm::python::bindMatch(m);
   lidar_sgm::python::bindCloudWriter(m);
+  lidar_sgm::python::bindSequence(m);
   m.def(
       "backends",
       [] {

@@ -312,9 +312,7 @@ void writeYamlContent(cv::FileStorage& storage, const StereoCalibration& c) {
 }
 
 bool hasYamlExtension(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lowerExtension(path.string());
   return extension == ".yaml" || extension == ".yml";
 }
 

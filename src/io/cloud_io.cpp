@@ -30,13 +30,6 @@ constexpr std::uint64_t kKittiPointBytes = 4 * sizeof(float);  // x, y, z, refle
   throw std::runtime_error("cannot read cloud '" + path + "': " + problem);
 }
 
-std::string lowerExtension(const std::string& path) {
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
 void requireRegularFile(const std::string& path) {
   const std::string unreadable = unreadableFileReason(path);
   if (!unreadable.empty()) failRead(path, unreadable);

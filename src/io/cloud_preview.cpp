@@ -10,6 +10,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "lidar_sgm/io/color_map.hpp"
+
 namespace lidar_sgm {
 namespace io {
 namespace {
@@ -53,17 +55,6 @@ struct PreviewCamera {
   double cx = 0.0;
   double cy = 0.0;
 };
-
-/// Turbo colors for 0..255 (OpenCV's table), BGR.
-std::array<cv::Vec3b, 256> turboTable() {
-  cv::Mat ramp(1, 256, CV_8UC1);
-  for (int i = 0; i < 256; ++i) ramp.at<std::uint8_t>(0, i) = static_cast<std::uint8_t>(i);
-  cv::Mat colored;
-  cv::applyColorMap(ramp, colored, cv::COLORMAP_TURBO);
-  std::array<cv::Vec3b, 256> table{};
-  for (int i = 0; i < 256; ++i) table[static_cast<std::size_t>(i)] = colored.at<cv::Vec3b>(0, i);
-  return table;
-}
 
 cv::Point toPixel(const Eigen::Vector3d& uvz) {
   return {static_cast<int>(std::floor(uvz.x())), static_cast<int>(std::floor(uvz.y()))};
@@ -169,7 +160,7 @@ cv::Mat renderCloudPreview(const std::vector<Eigen::Vector3f>& pointsCamera, con
   const auto splatMetres = static_cast<float>(o.pointSize);
   const auto maxDepth = static_cast<float>(o.maxDepth);
   const float colorScale = 255.0f / maxDepth;
-  const std::array<cv::Vec3b, 256> turbo = turboTable();
+  const std::array<cv::Vec3b, 256>& turbo = io::turboColors();
   const auto margin = static_cast<float>(o.maxSplatPx);
   const auto width = static_cast<float>(o.width);
   const auto height = static_cast<float>(o.height);

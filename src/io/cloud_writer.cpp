@@ -15,6 +15,7 @@
 #include "binary_pcd_writer.hpp"
 #include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
+#include "lidar_sgm/io/file_access.hpp"
 #include "pcd_reader.hpp"
 #include "pcl_file_writer.hpp"
 #include "ply_reader.hpp"
@@ -26,13 +27,6 @@ namespace {
 
 [[noreturn]] void failWrite(const std::string& path, const std::string& problem) {
   throw std::runtime_error("cannot write '" + path + "': " + problem);
-}
-
-std::string lowerExtension(const std::string& path) {
-  std::string extension = fs::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
 }
 
 // PCL's writers trust the blob's sizes; an inconsistent one would be written past its data.

@@ -1,7 +1,10 @@
 #include "lidar_sgm/io/file_access.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -25,6 +28,13 @@ std::string unreadableFileReason(const std::string& path) {
   if (descriptor < 0) return std::string("cannot open it: ") + std::strerror(errno);
   ::close(descriptor);
   return "";
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
 }
 
 }  // namespace io

@@ -22,7 +22,7 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_cloud.h>
 
-#include "batch/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
 #include "batch/sequence_map.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 #include "lidar_sgm/pcl/point_types.hpp"
@@ -214,10 +214,10 @@ TEST_F(BatchMap, AKilledRunsMapTemporariesAreRemovedAndAStoppedBuildWritesNothin
   apps::MapOptions options;
   options.mapPath = (root_ / "stopped.pcd").string();
   options.picturePath = (root_ / "stopped.png").string();
-  const std::vector<apps::Frame> frames = apps::framesFromDirectory(seq.string());
+  const std::vector<sequence::Frame> frames = sequence::framesFromDirectory(seq.string());
   for (int stopAfter : {0, 2, kFrames}) {  // at once, between frames, just before the write
     apps::SequenceMap sequence(options, frames, geometry::OutputFrame::Lidar, 0, 0);
-    for (const apps::Frame& frame : frames) sequence.frameWritten(frame, (out / (frame.name + ".pcd")).string());
+    for (const sequence::Frame& frame : frames) sequence.frameWritten(frame, (out / (frame.name + ".pcd")).string());
     int asked = 0;
     const apps::MapResult result = sequence.build([&] { return asked++ >= stopAfter; });
     EXPECT_FALSE(result.ok);

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "batch/frame_calibration.hpp"
-#include "batch/frame_list.hpp"
-#include "batch/manifest.hpp"
+#include "lidar_sgm/sequence/frame_calibration.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
+#include "lidar_sgm/sequence/manifest.hpp"
 #include "batch/output_state.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 
@@ -56,7 +56,7 @@ TEST_F(FrameList, OdometrySequenceGivesFramesInOrderWithTheirImagesWhereTheyExis
   touch(seq / "image_3" / "000000.png");
   touch(seq / "image_2" / "000001.png");  // a lone left image: LiDAR-only, colored
   touch(seq / "velodyne" / "notes.txt");  // not a scan
-  const std::vector<Frame> frames = framesFromDirectory(seq.string());
+  const std::vector<sequence::Frame> frames = sequence::framesFromDirectory(seq.string());
   ASSERT_EQ(frames.size(), 3u);
   EXPECT_EQ(frames[0].name, "000000");
   EXPECT_EQ(frames[1].name, "000001");
@@ -67,9 +67,9 @@ TEST_F(FrameList, OdometrySequenceGivesFramesInOrderWithTheirImagesWhereTheyExis
   EXPECT_TRUE(frames[1].right.empty());
   EXPECT_TRUE(frames[2].left.empty());
   EXPECT_TRUE(frames[2].right.empty());
-  for (const Frame& f : frames) {
+  for (const sequence::Frame& f : frames) {
     EXPECT_EQ(f.calib, (seq / "calib.txt").string());
-    EXPECT_EQ(f.calibFormat, CalibrationFormat::KittiOdometry);
+    EXPECT_EQ(f.calibFormat, sequence::CalibrationFormat::KittiOdometry);
   }
 }
 
@@ -80,7 +80,7 @@ TEST_F(FrameList, OdometryRootGivesEverySequenceWithItsNameInTheFrameName) {
   }
   fs::create_directories(root_ / "poses");
   for (const fs::path& dir : {root_, root_ / "sequences"}) {
-    const std::vector<Frame> frames = framesFromDirectory(dir.string());
+    const std::vector<sequence::Frame> frames = sequence::framesFromDirectory(dir.string());
     ASSERT_EQ(frames.size(), 2u) << dir;
     EXPECT_EQ(frames[0].name, "00/000000");
     EXPECT_EQ(frames[1].name, "01/000000");
@@ -94,64 +94,64 @@ TEST_F(FrameList, KittiRawDriveTakesTheCalibrationOfTheDateFolder) {
   touch(drive / "velodyne_points" / "data" / "0000000001.bin");
   touch(drive / "image_02" / "data" / "0000000001.png");
   touch(drive / "image_03" / "data" / "0000000001.png");
-  const std::vector<Frame> frames = framesFromDirectory(drive.string());
+  const std::vector<sequence::Frame> frames = sequence::framesFromDirectory(drive.string());
   ASSERT_EQ(frames.size(), 2u);
   EXPECT_EQ(frames[1].name, "0000000001");
   EXPECT_TRUE(frames[0].left.empty());
   EXPECT_EQ(frames[1].right, (drive / "image_03" / "data" / "0000000001.png").string());
   EXPECT_EQ(fs::path(frames[0].calib), fs::absolute(root_ / "2011_09_26"));
-  EXPECT_EQ(frames[0].calibFormat, CalibrationFormat::Auto);
+  EXPECT_EQ(frames[0].calibFormat, sequence::CalibrationFormat::Auto);
 }
 
 TEST_F(FrameList, EachLayoutIsNamedAndOnlyARawDriveHasOxtsPackets) {
   const fs::path drive = root_ / "2011_09_26" / "2011_09_26_drive_0001_sync";
   touch(drive / "velodyne_points" / "data" / "0000000007.bin");
-  EXPECT_EQ(directoryLayout(drive.string()), Layout::KittiRawDrive);
-  EXPECT_EQ(framesFromDirectory(drive.string())[0].oxts, (drive / "oxts" / "data" / "0000000007.txt").string())
+  EXPECT_EQ(sequence::directoryLayout(drive.string()), sequence::Layout::KittiRawDrive);
+  EXPECT_EQ(sequence::framesFromDirectory(drive.string())[0].oxts, (drive / "oxts" / "data" / "0000000007.txt").string())
       << "the packet's path is given whether or not it exists: the map names it when it is missing";
   const fs::path object = root_ / "object";
   touch(object / "velodyne" / "000000.bin");
   touch(object / "calib" / "000000.txt");
-  EXPECT_EQ(directoryLayout(object.string()), Layout::KittiObject);
-  EXPECT_TRUE(framesFromDirectory(object.string())[0].oxts.empty());
-  const fs::path sequence = root_ / "dataset" / "sequences" / "00";
-  touch(sequence / "velodyne" / "000000.bin");
-  touch(sequence / "calib.txt");
-  EXPECT_EQ(directoryLayout(sequence.string()), Layout::KittiOdometrySequence);
-  EXPECT_EQ(directoryLayout((root_ / "dataset").string()), Layout::KittiOdometryRoot);
-  EXPECT_STREQ(layoutName(Layout::KittiRawDrive), "KITTI raw drive");
-  EXPECT_STREQ(layoutName(Layout::KittiObject), "KITTI object layout");
-  EXPECT_STREQ(layoutName(Layout::KittiOdometrySequence), "KITTI odometry sequence");
-  EXPECT_STREQ(layoutName(Layout::KittiOdometryRoot), "KITTI odometry root");
-  EXPECT_STREQ(layoutName(Layout::ListFile), "list file");
+  EXPECT_EQ(sequence::directoryLayout(object.string()), sequence::Layout::KittiObject);
+  EXPECT_TRUE(sequence::framesFromDirectory(object.string())[0].oxts.empty());
+  const fs::path sequenceDir = root_ / "dataset" / "sequences" / "00";
+  touch(sequenceDir / "velodyne" / "000000.bin");
+  touch(sequenceDir / "calib.txt");
+  EXPECT_EQ(sequence::directoryLayout(sequenceDir.string()), sequence::Layout::KittiOdometrySequence);
+  EXPECT_EQ(sequence::directoryLayout((root_ / "dataset").string()), sequence::Layout::KittiOdometryRoot);
+  EXPECT_STREQ(sequence::layoutName(sequence::Layout::KittiRawDrive), "KITTI raw drive");
+  EXPECT_STREQ(sequence::layoutName(sequence::Layout::KittiObject), "KITTI object layout");
+  EXPECT_STREQ(sequence::layoutName(sequence::Layout::KittiOdometrySequence), "KITTI odometry sequence");
+  EXPECT_STREQ(sequence::layoutName(sequence::Layout::KittiOdometryRoot), "KITTI odometry root");
+  EXPECT_STREQ(sequence::layoutName(sequence::Layout::ListFile), "list file");
 }
 
 TEST_F(FrameList, KittiObjectLayoutTakesEachFramesCalibrationFile) {
   touch(root_ / "velodyne" / "000003.bin");
   touch(root_ / "calib" / "000003.txt");
-  const std::vector<Frame> frames = framesFromDirectory(root_.string());
+  const std::vector<sequence::Frame> frames = sequence::framesFromDirectory(root_.string());
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_EQ(frames[0].calib, (root_ / "calib" / "000003.txt").string());
-  EXPECT_EQ(frames[0].calibFormat, CalibrationFormat::Auto);
+  EXPECT_EQ(frames[0].calibFormat, sequence::CalibrationFormat::Auto);
 }
 
 TEST_F(FrameList, AFolderOfNoKnownLayoutIsRefusedNamingTheLayouts) {
   touch(root_ / "scans" / "000000.bin");
   try {
-    framesFromDirectory(root_.string());
+    sequence::framesFromDirectory(root_.string());
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("has no frames"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("KITTI raw drive"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(framesFromDirectory((root_ / "missing").string()), std::invalid_argument);
+  EXPECT_THROW(sequence::framesFromDirectory((root_ / "missing").string()), std::invalid_argument);
 }
 
 TEST_F(FrameList, TwoScansOfOneStemAreRefused) {
   touch(root_ / "velodyne" / "000000.bin");
   touch(root_ / "velodyne" / "000000.pcd");
   touch(root_ / "calib.txt");
-  EXPECT_THROW(framesFromDirectory(root_.string()), std::invalid_argument);
+  EXPECT_THROW(sequence::framesFromDirectory(root_.string()), std::invalid_argument);
 }
 
 TEST_F(FrameList, ListFileResolvesRelativePathsSkipsCommentsAndTakesDashForNone) {
@@ -161,7 +161,7 @@ TEST_F(FrameList, ListFileResolvesRelativePathsSkipsCommentsAndTakesDashForNone)
         "a/0.bin a/l0.png a/r0.png calib.txt\n"
         "  /abs/1.pcd   -   -   /abs/calib.yaml  \n"
         "a/2.bin a/l2.png - calib.txt\n");
-  const std::vector<Frame> frames = framesFromList((root_ / "frames.txt").string());
+  const std::vector<sequence::Frame> frames = sequence::framesFromList((root_ / "frames.txt").string());
   ASSERT_EQ(frames.size(), 3u);
   EXPECT_EQ(frames[0].name, "0");
   EXPECT_EQ(frames[0].scan, (root_ / "a" / "0.bin").string());
@@ -179,7 +179,7 @@ TEST_F(FrameList, BadListLinesAreRefusedNamingTheLine) {
   const auto messageOf = [&](const std::string& text) {
     write(root_ / "bad.txt", text);
     try {
-      framesFromList((root_ / "bad.txt").string());
+      sequence::framesFromList((root_ / "bad.txt").string());
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -192,32 +192,32 @@ TEST_F(FrameList, BadListLinesAreRefusedNamingTheLine) {
   EXPECT_NE(messageOf("x/a.bin - - c.txt\ny/a.bin - - c.txt\n").find("line 2: a second scan named 'a'"),
             std::string::npos);
   EXPECT_NE(messageOf("# nothing\n").find("has no frames"), std::string::npos);
-  EXPECT_THROW(framesFromList((root_ / "missing.txt").string()), std::invalid_argument);
+  EXPECT_THROW(sequence::framesFromList((root_ / "missing.txt").string()), std::invalid_argument);
 }
 
 TEST(Shard, ParsesKOverNAndRefusesAnythingElse) {
-  const Shard s = parseShard("2/5");
+  const sequence::Shard s = sequence::parseShard("2/5");
   EXPECT_EQ(s.index, 2);
   EXPECT_EQ(s.count, 5);
   for (const char* bad : {"", "2", "2/", "/5", "5/5", "-1/5", "1/0", "1/2x", "a/b", "1/2/3"}) {
-    EXPECT_THROW(parseShard(bad), std::invalid_argument) << bad;
+    EXPECT_THROW(sequence::parseShard(bad), std::invalid_argument) << bad;
   }
 }
 
 TEST(Shard, TheShardsCoverEveryFrameExactlyOnceInOrder) {
-  std::vector<Frame> frames(11);
+  std::vector<sequence::Frame> frames(11);
   for (std::size_t i = 0; i < frames.size(); ++i) frames[i].name = std::to_string(i);
   for (int count : {1, 2, 3, 11, 15}) {
     std::multiset<std::string> covered;
     for (int index = 0; index < count; ++index) {
-      const std::vector<Frame> mine = framesOfShard(frames, {index, count});
+      const std::vector<sequence::Frame> mine = sequence::framesOfShard(frames, {index, count});
       for (std::size_t j = 0; j < mine.size(); ++j) {
         EXPECT_EQ(mine[j].name, std::to_string(static_cast<std::size_t>(index) + j * static_cast<std::size_t>(count)));
         covered.insert(mine[j].name);
       }
     }
     EXPECT_EQ(covered.size(), frames.size()) << count;
-    for (const Frame& f : frames) EXPECT_EQ(covered.count(f.name), 1u) << count;
+    for (const sequence::Frame& f : frames) EXPECT_EQ(covered.count(f.name), 1u) << count;
   }
 }
 
@@ -242,7 +242,7 @@ const char* const kOdometryCalib =
 TEST_F(FrameList, OdometryCalibrationIsTheObjectFormatWithIdentityRectificationAndTrAsVeloToCam) {
   write(root_ / "calib.txt", kOdometryCalib);
   const geometry::StereoCalibration odometry =
-      readKittiOdometryCalibration((root_ / "calib.txt").string(), 1241, 376);
+      io::readKittiOdometryCalibration((root_ / "calib.txt").string(), 1241, 376);
   std::string objectText = kOdometryCalib;
   objectText.replace(objectText.find("Tr:"), 3, "Tr_velo_to_cam:");
   objectText += "R0_rect: 1 0 0 0 1 0 0 0 1\n";
@@ -255,28 +255,28 @@ TEST_F(FrameList, OdometryCalibrationIsTheObjectFormatWithIdentityRectificationA
   // The KITTI odometry stereo baseline is about 0.54 m.
   EXPECT_NEAR(odometry.baseline, 0.54, 0.01);
 
-  Frame frame;
+  sequence::Frame frame;
   frame.calib = (root_ / "calib.txt").string();
-  frame.calibFormat = CalibrationFormat::KittiOdometry;
-  EXPECT_EQ(readFrameCalibration(frame, 1241, 376).baseline, odometry.baseline);
-  frame.calibFormat = CalibrationFormat::Auto;  // read as the object format, it lacks R0_rect
-  EXPECT_THROW(readFrameCalibration(frame, 1241, 376), std::runtime_error);
+  frame.calibFormat = sequence::CalibrationFormat::KittiOdometry;
+  EXPECT_EQ(sequence::readFrameCalibration(frame, 1241, 376).baseline, odometry.baseline);
+  frame.calibFormat = sequence::CalibrationFormat::Auto;  // read as the object format, it lacks R0_rect
+  EXPECT_THROW(sequence::readFrameCalibration(frame, 1241, 376), std::runtime_error);
 }
 
 TEST_F(FrameList, OdometryCalibrationWithoutTrIsRefusedNamingTheFile) {
   write(root_ / "calib.txt", "P2: 1 0 0 0 0 1 0 0 0 0 1 0\n");
   try {
-    readKittiOdometryCalibration((root_ / "calib.txt").string());
+    io::readKittiOdometryCalibration((root_ / "calib.txt").string());
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("calib.txt' has no 'Tr:' line"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(readKittiOdometryCalibration((root_ / "missing.txt").string()), std::runtime_error);
+  EXPECT_THROW(io::readKittiOdometryCalibration((root_ / "missing.txt").string()), std::runtime_error);
 }
 
 TEST(Manifest, JsonLinesEscapeTextAndCarryEveryField) {
-  EXPECT_EQ(jsonEscape("a\"b\\c\nd\te\x01"), "a\\\"b\\\\c\\nd\\te\\u0001");
-  FrameRecord r;
+  EXPECT_EQ(sequence::jsonEscape("a\"b\\c\nd\te\x01"), "a\\\"b\\\\c\\nd\\te\\u0001");
+  sequence::FrameRecord r;
   r.frame = "00/000001";
   r.status = "failed";
   r.points = 12;
@@ -284,21 +284,21 @@ TEST(Manifest, JsonLinesEscapeTextAndCarryEveryField) {
   r.ms.load = 1.5;
   r.ms.match = 2.0;
   r.error = "cannot read 'x\"y'";
-  EXPECT_EQ(toJsonLine(r),
+  EXPECT_EQ(sequence::toJsonLine(r),
             "{\"frame\":\"00/000001\",\"status\":\"failed\",\"points\":12,\"bytes\":4096,\"load_ms\":1.5,\"project_ms\":0.0,"
             "\"match_ms\":2.0,\"reproject_ms\":0.0,\"save_ms\":0.0,\"total_ms\":3.5,\"error\":\"cannot read "
             "'x\\\"y'\"}");
 }
 
 TEST(Manifest, AJsonLineReadsBackAsItsRecord) {
-  FrameRecord r;
+  sequence::FrameRecord r;
   r.frame = "00/0\"1\\x\n";
   r.status = "ok";
   r.points = 123456789;
   r.bytes = 9876543210;
   r.ms = {1.5, 2.34, 300.5, 4.0, 0.5};
   r.error = "a\tb\x02";
-  const std::optional<FrameRecord> back = fromJsonLine(toJsonLine(r));
+  const std::optional<sequence::FrameRecord> back = sequence::fromJsonLine(sequence::toJsonLine(r));
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->frame, r.frame);
   EXPECT_EQ(back->status, "ok");
@@ -312,42 +312,42 @@ TEST(Manifest, AJsonLineReadsBackAsItsRecord) {
   EXPECT_EQ(back->error, r.error);
   for (const char* other : {"", "an older run's line", "{\"frame\":\"a\"}", "{\"frame\":\"a\",\"status\":\"ok\",\"points\":",
                             "[1, 2]"}) {
-    EXPECT_FALSE(fromJsonLine(other).has_value()) << other;
+    EXPECT_FALSE(sequence::fromJsonLine(other).has_value()) << other;
   }
-  const std::string line = toJsonLine(r);
-  EXPECT_FALSE(fromJsonLine(line.substr(0, line.size() - 1)).has_value()) << "a line cut short";
+  const std::string line = sequence::toJsonLine(r);
+  EXPECT_FALSE(sequence::fromJsonLine(line.substr(0, line.size() - 1)).has_value()) << "a line cut short";
 }
 
 TEST_F(FrameList, ASkippedFrameKeepsTheRecordOfTheRunThatMadeItsCloud) {
-  FrameRecord made;
+  sequence::FrameRecord made;
   made.frame = "000001";
   made.status = "ok";
   made.points = 5000;
   made.bytes = 80000;
   made.ms = {1, 2, 3, 4, 5};
-  FrameRecord failed = made;
+  sequence::FrameRecord failed = made;
   failed.frame = "000002";
   failed.status = "failed";
-  FrameRecord old = made;  // an older shard's record of frame 000001, overridden by the later manifest
+  sequence::FrameRecord old = made;  // an older shard's record of frame 000001, overridden by the later manifest
   old.points = 1;
-  write(root_ / "manifest.shard-0-of-2.jsonl", toJsonLine(old) + "\n");
+  write(root_ / "manifest.shard-0-of-2.jsonl", sequence::toJsonLine(old) + "\n");
   fs::last_write_time(root_ / "manifest.shard-0-of-2.jsonl", fs::file_time_type::clock::now() - std::chrono::hours(1));
-  write(root_ / "manifest.jsonl", toJsonLine(made) + "\n" + toJsonLine(failed) + "\nnot json\n");
-  write(root_ / "other.jsonl", toJsonLine(failed) + "\n");
-  const std::map<std::string, FrameRecord> earlier = earlierFrameRecords(root_.string());
+  write(root_ / "manifest.jsonl", sequence::toJsonLine(made) + "\n" + sequence::toJsonLine(failed) + "\nnot json\n");
+  write(root_ / "other.jsonl", sequence::toJsonLine(failed) + "\n");
+  const std::map<std::string, sequence::FrameRecord> earlier = earlierFrameRecords(root_.string());
   ASSERT_EQ(earlier.size(), 1u) << "failed records carry nothing";
   EXPECT_EQ(earlier.at("000001").points, 5000u);
 
-  const FrameRecord skipped = skippedFrameRecord("000001", 80000, earlier);
+  const sequence::FrameRecord skipped = skippedFrameRecord("000001", 80000, earlier);
   EXPECT_EQ(skipped.status, "skipped");
   EXPECT_EQ(skipped.points, 5000u);
   EXPECT_EQ(skipped.bytes, 80000u);
   EXPECT_EQ(skipped.ms.total(), 15.0);
   // That skipped record, in the next run's manifest, carries the statistics on.
-  write(root_ / "manifest.jsonl", toJsonLine(skipped) + "\n");
+  write(root_ / "manifest.jsonl", sequence::toJsonLine(skipped) + "\n");
   EXPECT_EQ(earlierFrameRecords(root_.string()).at("000001").points, 5000u);
 
-  const FrameRecord replaced = skippedFrameRecord("000001", 79999, earlier);
+  const sequence::FrameRecord replaced = skippedFrameRecord("000001", 79999, earlier);
   EXPECT_EQ(replaced.points, 0u) << "a cloud of another size is not the one the record describes";
   EXPECT_EQ(replaced.bytes, 79999u);
   EXPECT_EQ(skippedFrameRecord("000003", 10, earlier).ms.total(), 0.0);
@@ -357,8 +357,8 @@ TEST_F(FrameList, ASkippedFrameKeepsTheRecordOfTheRunThatMadeItsCloud) {
 TEST_F(FrameList, ManifestAppendsOneFlushedLinePerRecordAndStartsEmpty) {
   const std::string path = (root_ / "manifest.jsonl").string();
   write(path, "an older run's line\n");
-  Manifest manifest(path);
-  FrameRecord r;
+  sequence::Manifest manifest(path);
+  sequence::FrameRecord r;
   r.frame = "a";
   r.status = "ok";
   manifest.append(r);
@@ -370,7 +370,7 @@ TEST_F(FrameList, ManifestAppendsOneFlushedLinePerRecordAndStartsEmpty) {
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0].rfind("{\"frame\":\"a\"", 0), 0u);
   EXPECT_EQ(lines[1].rfind("{\"frame\":\"b\"", 0), 0u);
-  EXPECT_THROW(Manifest((root_ / "no" / "such" / "m.jsonl").string()), std::runtime_error);
+  EXPECT_THROW(sequence::Manifest((root_ / "no" / "such" / "m.jsonl").string()), std::runtime_error);
 }
 
 }  // namespace

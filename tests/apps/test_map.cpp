@@ -17,11 +17,12 @@
 
 #include <opencv2/core.hpp>
 
-#include "batch/frame_calibration.hpp"
-#include "batch/frame_to_world.hpp"
+#include "lidar_sgm/io/calibration_io.hpp"
+#include "lidar_sgm/sequence/frame_calibration.hpp"
+#include "lidar_sgm/sequence/frame_to_world.hpp"
 #include "batch/map_picture.hpp"
-#include "batch/poses.hpp"
-#include "batch/voxel_map.hpp"
+#include "lidar_sgm/sequence/poses.hpp"
+#include "lidar_sgm/sequence/voxel_map.hpp"
 
 namespace lidar_sgm {
 namespace apps {
@@ -67,7 +68,7 @@ TEST_F(MapPieces, PosesFileGivesOneRowMajorPosePerLine) {
   // Frame 1: turned 90 degrees about y (x' = z, z' = -x), at (1, 2, 3); exponents as KITTI prints.
   const std::string path = write(root_ / "poses.txt", std::string(kIdentity) +
                                                           "0.0 0 1.000000e+00 1 0 1 0 2 -1 0 0 3.0e0\n");
-  const std::vector<Eigen::Isometry3d> poses = readPoses(path);
+  const std::vector<Eigen::Isometry3d> poses = sequence::readPoses(path);
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_TRUE(poses[0].isApprox(Eigen::Isometry3d::Identity()));
   const Eigen::Vector3d moved = poses[1] * Eigen::Vector3d(1, 0, 0);
@@ -91,59 +92,59 @@ TEST_F(MapPieces, EachBadPosesLineIsNamedByFileAndLine) {
                         Case{"1 0 0 0 0 1 0 0 0 0 -1 0", "not a rigid transform"},      // a reflection
                         Case{"1 0.01 0 0 0 1 0 0 0 0 1 0", "not a rigid transform"}}) {  // sheared beyond 1e-3
     const std::string path = write(root_ / "poses.txt", std::string(kIdentity) + c.secondLine + "\n" + kIdentity);
-    const std::string error = errorOf([&] { readPoses(path); });
+    const std::string error = errorOf([&] { sequence::readPoses(path); });
     EXPECT_NE(error.find("poses file '" + path + "' line 2: "), std::string::npos) << c.secondLine << ": " << error;
     EXPECT_NE(error.find(c.problem), std::string::npos) << c.secondLine << ": " << error;
   }
   // Within the tolerance: KITTI's printed digits.
   const std::string path = write(root_ / "close.txt", "1 0.0004 0 0 -0.0004 1 0 0 0 0 1 0\n");
-  EXPECT_EQ(readPoses(path).size(), 1u);
-  EXPECT_NE(errorOf([&] { readPoses((root_ / "missing.txt").string()); }).find("cannot read the poses file"),
+  EXPECT_EQ(sequence::readPoses(path).size(), 1u);
+  EXPECT_NE(errorOf([&] { sequence::readPoses((root_ / "missing.txt").string()); }).find("cannot read the poses file"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { readPoses(write(root_ / "empty.txt", "")); }).find("has no pose"), std::string::npos);
+  EXPECT_NE(errorOf([&] { sequence::readPoses(write(root_ / "empty.txt", "")); }).find("has no pose"), std::string::npos);
 }
 
 /// Frames of a KITTI odometry sequence folder (only paths matter here).
-std::vector<Frame> odometryFrames(const fs::path& sequence, int count) {
-  std::vector<Frame> frames(static_cast<std::size_t>(count));
+std::vector<sequence::Frame> odometryFrames(const fs::path& sequenceDir, int count) {
+  std::vector<sequence::Frame> frames(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
-    Frame& f = frames[static_cast<std::size_t>(i)];
+    sequence::Frame& f = frames[static_cast<std::size_t>(i)];
     f.name = "00000" + std::to_string(i);
-    f.scan = (sequence / "velodyne" / (f.name + ".bin")).string();
-    f.calib = (sequence / "calib.txt").string();
-    f.calibFormat = CalibrationFormat::KittiOdometry;
+    f.scan = (sequenceDir / "velodyne" / (f.name + ".bin")).string();
+    f.calib = (sequenceDir / "calib.txt").string();
+    f.calibFormat = sequence::CalibrationFormat::KittiOdometry;
   }
   return frames;
 }
 
 TEST_F(MapPieces, PosesAreFoundInTheSequenceFolderFirstThenInTheDatasetsPosesFolder) {
-  const fs::path sequence = root_ / "dataset" / "sequences" / "07";
-  const std::vector<Frame> frames = odometryFrames(sequence, 2);
-  EXPECT_EQ(findPosesFile(frames), "");
+  const fs::path sequenceDir = root_ / "dataset" / "sequences" / "07";
+  const std::vector<sequence::Frame> frames = odometryFrames(sequenceDir, 2);
+  EXPECT_EQ(sequence::findPosesFile(frames), "");
   const std::string dataset = write(root_ / "dataset" / "poses" / "07.txt", std::string(kIdentity) + kIdentity);
-  EXPECT_EQ(fs::path(findPosesFile(frames)), fs::path(dataset));
-  const std::string own = write(sequence / "poses.txt", std::string(kIdentity) + kIdentity);
-  EXPECT_EQ(fs::path(findPosesFile(frames)), fs::path(own));
-  EXPECT_EQ(posesOfSequence(frames, "").poses.size(), 2u);
+  EXPECT_EQ(fs::path(sequence::findPosesFile(frames)), fs::path(dataset));
+  const std::string own = write(sequenceDir / "poses.txt", std::string(kIdentity) + kIdentity);
+  EXPECT_EQ(fs::path(sequence::findPosesFile(frames)), fs::path(own));
+  EXPECT_EQ(sequence::posesOfSequence(frames, "").poses.size(), 2u);
 
-  std::vector<Frame> object = frames;
-  for (Frame& f : object) f.calibFormat = CalibrationFormat::Auto;
-  EXPECT_EQ(findPosesFile(object), "") << "only an odometry sequence has poses of its own";
-  EXPECT_NE(errorOf([&] { posesOfSequence(object, ""); }).find("give -poses FILE"), std::string::npos);
-  EXPECT_EQ(posesOfSequence(object, own).poses.size(), 2u);
+  std::vector<sequence::Frame> object = frames;
+  for (sequence::Frame& f : object) f.calibFormat = sequence::CalibrationFormat::Auto;
+  EXPECT_EQ(sequence::findPosesFile(object), "") << "only an odometry sequence has poses of its own";
+  EXPECT_NE(errorOf([&] { sequence::posesOfSequence(object, ""); }).find("give -poses FILE"), std::string::npos);
+  EXPECT_EQ(sequence::posesOfSequence(object, own).poses.size(), 2u);
 }
 
 TEST_F(MapPieces, PoseCountMustBeTheFrameCountAndOneSequenceOnly) {
-  const fs::path sequence = root_ / "sequences" / "00";
-  const std::string poses = write(sequence / "poses.txt", std::string(kIdentity) + kIdentity + kIdentity);
-  const std::string error = errorOf([&] { posesOfSequence(odometryFrames(sequence, 2), ""); });
+  const fs::path sequenceDir = root_ / "sequences" / "00";
+  const std::string poses = write(sequenceDir / "poses.txt", std::string(kIdentity) + kIdentity + kIdentity);
+  const std::string error = errorOf([&] { sequence::posesOfSequence(odometryFrames(sequenceDir, 2), ""); });
   EXPECT_NE(error.find("'" + poses + "' has 3 poses but the sequence has 2 frames"), std::string::npos) << error;
 
-  std::vector<Frame> two = odometryFrames(sequence, 1);
-  const std::vector<Frame> other = odometryFrames(root_ / "sequences" / "01", 1);
+  std::vector<sequence::Frame> two = odometryFrames(sequenceDir, 1);
+  const std::vector<sequence::Frame> other = odometryFrames(root_ / "sequences" / "01", 1);
   two.insert(two.end(), other.begin(), other.end());
   for (const std::string& given : {std::string(), poses}) {
-    const std::string several = errorOf([&] { posesOfSequence(two, given); });
+    const std::string several = errorOf([&] { sequence::posesOfSequence(two, given); });
     EXPECT_NE(several.find("2 KITTI odometry sequences (00, 01)"), std::string::npos) << several;
   }
 }
@@ -162,10 +163,10 @@ std::string odometryCalibration() {
 
 TEST_F(MapPieces, AFramesCloudLandsWhereItsPoseAndCalibrationPutIt) {
   const std::string calibPath = write(root_ / "00" / "calib.txt", odometryCalibration());
-  Frame frame;
+  sequence::Frame frame;
   frame.calib = calibPath;
-  frame.calibFormat = CalibrationFormat::KittiOdometry;
-  const geometry::StereoCalibration calibration = readFrameCalibration(frame);
+  frame.calibFormat = sequence::CalibrationFormat::KittiOdometry;
+  const geometry::StereoCalibration calibration = sequence::readFrameCalibration(frame);
   // The pose: turned 90 degrees about y (x' = z, z' = -x), at (1, 0, 5).
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() << 0, 0, 1, 0, 1, 0, -1, 0, 0;
@@ -175,7 +176,7 @@ TEST_F(MapPieces, AFramesCloudLandsWhereItsPoseAndCalibrationPutIt) {
   const Eigen::Vector3d lidarPoint(10, 2, 1);
   const Eigen::Vector3d expected(10.73, -1.08, 7);
   const Eigen::Isometry3d lidarToWorld =
-      cloudToWorld(pose, poseCameraFromLidar(frame, calibration), calibration, geometry::OutputFrame::Lidar);
+      sequence::cloudToWorld(pose, sequence::poseCameraFromLidar(frame, calibration), calibration, geometry::OutputFrame::Lidar);
   EXPECT_LT((lidarToWorld * lidarPoint - expected).norm(), 1e-12) << (lidarToWorld * lidarPoint).transpose();
 
   // The same point written in the camera frame is in camera 2 (its x is camera 0's + 0.06 m):
@@ -183,16 +184,20 @@ TEST_F(MapPieces, AFramesCloudLandsWhereItsPoseAndCalibrationPutIt) {
   const Eigen::Vector3d cameraPoint = calibration.T_cam_lidar * lidarPoint;
   EXPECT_LT((cameraPoint - Eigen::Vector3d(-2 + 0.06, -1.08, 9.73)).norm(), 1e-12) << cameraPoint.transpose();
   const Eigen::Isometry3d cameraToWorld =
-      cloudToWorld(pose, poseCameraFromLidar(frame, calibration), calibration, geometry::OutputFrame::Camera);
+      sequence::cloudToWorld(pose, sequence::poseCameraFromLidar(frame, calibration), calibration, geometry::OutputFrame::Camera);
   EXPECT_LT((cameraToWorld * cameraPoint - expected).norm(), 1e-12) << (cameraToWorld * cameraPoint).transpose();
 
   // Another layout has no camera 0: its poses are of the calibration's left camera.
-  Frame object = frame;
-  object.calibFormat = CalibrationFormat::Auto;
-  EXPECT_TRUE(poseCameraFromLidar(object, calibration).isApprox(calibration.T_cam_lidar));
-  EXPECT_NE(errorOf([&] { readKittiOdometryTr(write(root_ / "noTr.txt", "P0: 1 0 0 0 0 1 0 0 0 0 1 0\n")); })
-                .find("has no 'Tr:' line"),
-            std::string::npos);
+  sequence::Frame object = frame;
+  object.calibFormat = sequence::CalibrationFormat::Auto;
+  EXPECT_TRUE(sequence::poseCameraFromLidar(object, calibration).isApprox(calibration.T_cam_lidar));
+  // A file that is not what it should be is the io readers' std::runtime_error.
+  try {
+    io::readKittiOdometryTr(write(root_ / "noTr.txt", "P0: 1 0 0 0 0 1 0 0 0 0 1 0\n"));
+    ADD_FAILURE() << "a calib.txt without Tr was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("has no 'Tr:' line"), std::string::npos) << e.what();
+  }
 }
 
 // --- the voxel map ----------------------------------------------------------------------------
@@ -211,8 +216,8 @@ PointXYZRGBConfidence point(float x, float y, float z, std::uint8_t r = 0, std::
   return p;
 }
 
-MapInput input(std::vector<PointXYZRGBConfidence> points, bool color = true, bool confidence = true) {
-  MapInput in;
+sequence::MapInput input(std::vector<PointXYZRGBConfidence> points, bool color = true, bool confidence = true) {
+  sequence::MapInput in;
   for (const PointXYZRGBConfidence& p : points) in.points.push_back(p);
   in.hasColor = color;
   in.hasConfidence = confidence;
@@ -220,7 +225,7 @@ MapInput input(std::vector<PointXYZRGBConfidence> points, bool color = true, boo
 }
 
 TEST_F(MapPieces, AVoxelKeepsTheCentroidMeanColorAndMeanConfidenceOfItsPoints) {
-  VoxelMap map(1.0);
+  sequence::VoxelMap map(1.0);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   map.add(input({point(0.2f, 0.2f, 0.2f, 10, 20, 30, 0.2f), point(-0.5f, 0.0f, 0.0f, 1, 2, 3, 1.0f),
                  point(nan, 0, 0), point(0.6f, 0.4f, 0.8f, 20, 40, 61, 0.6f)}),
@@ -248,7 +253,7 @@ TEST_F(MapPieces, AVoxelKeepsTheCentroidMeanColorAndMeanConfidenceOfItsPoints) {
 }
 
 TEST_F(MapPieces, FieldsAreKeptOnlyWhenEveryCloudHasThem) {
-  VoxelMap map(0.1);
+  sequence::VoxelMap map(0.1);
   EXPECT_FALSE(map.hasColor()) << "an empty map has nothing";
   map.add(input({point(0, 0, 0, 9, 9, 9, 0.5f)}), Eigen::Isometry3d::Identity());
   map.add(input({point(1, 0, 0)}, false, true), Eigen::Isometry3d::Identity());
@@ -260,8 +265,8 @@ TEST_F(MapPieces, FieldsAreKeptOnlyWhenEveryCloudHasThem) {
 TEST_F(MapPieces, TheSameCloudsInTheSameOrderGiveTheSameMapBitForBitAndOrderOnlyMovesVoxels) {
   std::mt19937 random(7);
   std::uniform_real_distribution<float> coordinate(-20.0f, 20.0f);
-  std::vector<MapInput> clouds(3);
-  for (MapInput& cloud : clouds) {
+  std::vector<sequence::MapInput> clouds(3);
+  for (sequence::MapInput& cloud : clouds) {
     cloud.hasColor = cloud.hasConfidence = true;
     for (int i = 0; i < 5000; ++i) {
       cloud.points.push_back(point(coordinate(random), coordinate(random) / 10, coordinate(random),
@@ -269,7 +274,7 @@ TEST_F(MapPieces, TheSameCloudsInTheSameOrderGiveTheSameMapBitForBitAndOrderOnly
     }
   }
   const auto build = [&](const std::vector<int>& order) {
-    VoxelMap map(0.5);
+    sequence::VoxelMap map(0.5);
     for (int i : order) map.add(clouds[static_cast<std::size_t>(i)], Eigen::Isometry3d::Identity());
     return map.points();
   };
@@ -299,14 +304,14 @@ TEST_F(MapPieces, TheSameCloudsInTheSameOrderGiveTheSameMapBitForBitAndOrderOnly
 TEST_F(MapPieces, AKilometreLongDriveKeepsEveryVoxelApart) {
   // pcl::VoxelGrid numbers a box's voxels in 32 bits: 2 km x 2 km x 50 m at 0.1 m is 2e11 voxels,
   // which it refuses. Here two points 0.1 m apart at the far corner stay two voxels.
-  VoxelMap map(0.1);
+  sequence::VoxelMap map(0.1);
   map.add(input({point(0, 0, 0), point(2000.05f, 50.05f, 2000.05f), point(2000.15f, 50.05f, 2000.05f)}),
           Eigen::Isometry3d::Identity());
   ASSERT_EQ(map.size(), 3u);
   EXPECT_EQ(map.points()[2].x, 2000.15f);
-  EXPECT_NE(errorOf([] { VoxelMap(0.0); }).find("voxel size must be positive"), std::string::npos);
-  EXPECT_NE(errorOf([] { VoxelMap(-1.0); }).find("voxel size must be positive"), std::string::npos);
-  VoxelMap tiny(1e-9);
+  EXPECT_NE(errorOf([] { sequence::VoxelMap(0.0); }).find("voxel size must be positive"), std::string::npos);
+  EXPECT_NE(errorOf([] { sequence::VoxelMap(-1.0); }).find("voxel size must be positive"), std::string::npos);
+  sequence::VoxelMap tiny(1e-9);
   EXPECT_NE(errorOf([&] { tiny.add(input({point(1e9f, 0, 0)}), Eigen::Isometry3d::Identity()); }).find("too far out"),
             std::string::npos);
 }

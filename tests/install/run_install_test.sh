@@ -116,6 +116,10 @@ if [ "$have_pcl" = "ON" ]; then
   step "PCL user: find_package(lidar_sgm COMPONENTS core pipeline io pcl), SGMDensification on $sample_dir"
   build_downstream pcl_user
   "$work/build-pcl_user/pcl_user" "$sample_dir"
+  step "sequence user: find_package(lidar_sgm COMPONENTS sequence), the frames of $sample_dir"
+  build_downstream sequence_user
+  "$work/build-sequence_user/sequence_user" "$sample_dir" | tail -n 1 | grep -q "KITTI object layout" ||
+    { echo "FAILED: sequence_user did not read $sample_dir as a KITTI object layout" >&2; exit 1; }
 else
   step "PCL user skipped: this build has no PCL"
 fi

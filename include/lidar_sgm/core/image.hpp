@@ -87,4 +87,18 @@ constexpr std::int16_t kInvalidDisparity = std::numeric_limits<std::int16_t>::mi
 /// minDisparity in [-512, 512].
 constexpr int openCvInvalidDisparity16(int minDisparity) { return (minDisparity - 1) * kDisparityScale; }
 
+/// A gray image of 8 or 16 bits per pixel (census only compares intensities).
+struct GrayImageView {
+  ImageView<const std::uint8_t> gray8;
+  ImageView<const std::uint16_t> gray16;
+  GrayImageView() = default;
+  GrayImageView(ImageView<const std::uint8_t> image) : gray8(image) {}    // NOLINT: view conversion
+  GrayImageView(ImageView<const std::uint16_t> image) : gray16(image) {}  // NOLINT: view conversion
+  GrayImageView(ImageView<std::uint8_t> image) : gray8(image) {}          // NOLINT: view conversion
+  GrayImageView(ImageView<std::uint16_t> image) : gray16(image) {}        // NOLINT: view conversion
+  bool empty() const { return gray8.empty() && gray16.empty(); }
+  int width() const { return gray8.empty() ? gray16.width : gray8.width; }
+  int height() const { return gray8.empty() ? gray16.height : gray8.height; }
+};
+
 }  // namespace lidar_sgm

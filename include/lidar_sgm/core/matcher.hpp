@@ -69,20 +69,6 @@ struct StageTimings {
   }
 };
 
-/// A gray image of 8 or 16 bits per pixel (census only compares intensities).
-struct GrayImageView {
-  ImageView<const std::uint8_t> gray8;
-  ImageView<const std::uint16_t> gray16;
-  GrayImageView() = default;
-  GrayImageView(ImageView<const std::uint8_t> image) : gray8(image) {}    // NOLINT: view conversion
-  GrayImageView(ImageView<const std::uint16_t> image) : gray16(image) {}  // NOLINT: view conversion
-  GrayImageView(ImageView<std::uint8_t> image) : gray8(image) {}          // NOLINT: view conversion
-  GrayImageView(ImageView<std::uint16_t> image) : gray16(image) {}        // NOLINT: view conversion
-  bool empty() const { return gray8.empty() && gray16.empty(); }
-  int width() const { return gray8.empty() ? gray16.width : gray8.width; }
-  int height() const { return gray8.empty() ? gray16.height : gray8.height; }
-};
-
 /// Triple-SGM: a third camera `baselineRatio` * b above the left one (b: the stereo baseline),
 /// with the left camera's intrinsics and orientation, rectified with it vertically (same columns).
 /// A point of disparity d in the left/right pair appears d * baselineRatio rows lower in `up`.

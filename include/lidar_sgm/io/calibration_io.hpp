@@ -50,6 +50,15 @@ Eigen::Isometry3d readKittiRawRigidTransform(const std::string& path);
 /// The same from a stream; `source` names it in messages.
 Eigen::Isometry3d readKittiRawRigidTransform(std::istream& in, const std::string& source);
 
+/// KITTI odometry calib.txt (P0..P3, Tr: the LiDAR into the rectified camera 0), read as the
+/// KITTI object format it is a case of: R0_rect the identity, Tr_velo_to_cam = Tr, so T_cam_lidar
+/// ends in camera 2 as for the object benchmark. `width`/`height` as readKittiCalibration (0 = from
+/// the images). Throws std::runtime_error naming the file (and the missing Tr line).
+geometry::StereoCalibration readKittiOdometryCalibration(const std::string& path, int width = 0, int height = 0);
+/// Tr of a KITTI odometry calib.txt: the LiDAR into the rectified camera 0, the camera KITTI's
+/// odometry poses refer to. Throws std::runtime_error naming the file when it has no valid Tr line.
+Eigen::Isometry3d readKittiOdometryTr(const std::string& path);
+
 /// Our YAML (cv::FileStorage): width, height, K (3x3), baseline, T_cam_lidar (4x4).
 geometry::StereoCalibration readCalibrationYaml(const std::string& path);
 /// The same from a stream; `source` names it in messages.

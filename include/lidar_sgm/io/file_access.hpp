@@ -12,5 +12,8 @@ namespace io {
 /// reason for refusing to open it (e.g. "cannot open it: Permission denied", from errno).
 std::string unreadableFileReason(const std::string& path);
 
+/// The extension of `path`'s file name in lower case, with its dot (".pcd"); "" when it has none.
+std::string lowerExtension(const std::string& path);
+
 }  // namespace io
 }  // namespace lidar_sgm

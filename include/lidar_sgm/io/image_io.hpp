@@ -8,7 +8,6 @@
 #include <opencv2/core.hpp>
 
 #include "lidar_sgm/core/image.hpp"
-#include "lidar_sgm/core/matcher.hpp"
 
 namespace lidar_sgm {
 namespace io {

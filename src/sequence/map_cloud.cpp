@@ -1,4 +1,4 @@
-#include "batch/map_cloud.hpp"
+#include "lidar_sgm/sequence/map_cloud.hpp"
 
 #include <stdexcept>
 
@@ -8,10 +8,10 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
-#include "common/output_paths.hpp"
+#include "lidar_sgm/io/file_access.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 
 bool hasField(const pcl::PCLPointCloud2& cloud, const std::string& name) { return pcl::getFieldIndex(cloud, name) >= 0; }
@@ -36,7 +36,7 @@ void write(const std::string& path, const pcl::PointCloud<PointXYZRGBConfidence>
 
 MapInput readFrameCloud(const std::string& path) {
   pcl::PCLPointCloud2 blob;
-  const std::string extension = lowerExtension(path);
+  const std::string extension = io::lowerExtension(path);
   int status = -1;
   if (extension == ".pcd") {
     status = pcl::io::loadPCDFile(path, blob);
@@ -77,5 +77,5 @@ void writeMapCloud(const std::string& path, const VoxelMap& map, io::CloudFormat
   }
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

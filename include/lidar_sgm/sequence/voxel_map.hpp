@@ -13,7 +13,7 @@
 #include "lidar_sgm/pcl/point_types.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// A cloud to add: its points (non-finite ones are skipped) and which of their fields are real.
 struct MapInput {
@@ -70,5 +70,5 @@ class VoxelMap {
   std::size_t confident_ = 0;
 };
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -6,10 +6,10 @@
 
 #include <Eigen/Geometry>
 
-#include "batch/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// How far a pose's rotation may be from orthonormal (max |R^T R - I| entry, |det R - 1|): the
 /// KITTI poses print about 7 digits, and drift over a long drive stays well inside this.
@@ -41,5 +41,5 @@ struct SequencePoses {
 /// file's count is not the frame count, naming the file, and for a missing or bad OXTS packet.
 SequencePoses posesOfSequence(const std::vector<Frame>& frames, const std::string& posesPath);
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

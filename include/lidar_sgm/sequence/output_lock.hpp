@@ -7,10 +7,10 @@
 
 #include <string>
 
-#include "batch/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 class OutputFolderLock {
  public:
@@ -29,5 +29,5 @@ class OutputFolderLock {
   bool whole_ = false;  ///< folder_ is held exclusively (and holds this pid)
 };
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

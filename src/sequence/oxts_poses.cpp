@@ -1,4 +1,4 @@
-#include "batch/oxts_poses.hpp"
+#include "lidar_sgm/sequence/oxts_poses.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,14 +7,14 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "batch/frame_calibration.hpp"
-#include "batch/number_line.hpp"
+#include "lidar_sgm/sequence/frame_calibration.hpp"
+#include "number_line.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
 
 namespace fs = std::filesystem;
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -137,5 +137,5 @@ std::vector<Eigen::Isometry3d> oxtsPosesOfDrive(const std::vector<Frame>& frames
   return cameraPosesFromImuPoses(imuPosesFromOxts(packets), cameraFromImu);
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

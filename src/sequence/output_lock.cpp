@@ -1,4 +1,4 @@
-#include "batch/output_lock.hpp"
+#include "lidar_sgm/sequence/output_lock.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -15,7 +15,7 @@
 namespace fs = std::filesystem;
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 
 int openLockFile(const std::string& path) {
@@ -108,5 +108,5 @@ OutputFolderLock::~OutputFolderLock() {
   }
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

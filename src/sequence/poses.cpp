@@ -1,4 +1,4 @@
-#include "batch/poses.hpp"
+#include "lidar_sgm/sequence/poses.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,14 +8,14 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "batch/number_line.hpp"
-#include "batch/oxts_poses.hpp"
+#include "number_line.hpp"
+#include "lidar_sgm/sequence/oxts_poses.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 
 namespace fs = std::filesystem;
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 
 /// The 12 numbers of one line; `where` names the file and line in errors.
@@ -120,5 +120,5 @@ SequencePoses posesOfSequence(const std::vector<Frame>& frames, const std::strin
   return result;
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -8,7 +8,7 @@
 #include <string>
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// Where a frame's time went [ms]; 0 for a skipped or failed frame's untimed stages.
 struct FrameTimings {
@@ -63,5 +63,5 @@ class Manifest {
   int descriptor_ = -1;
 };
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

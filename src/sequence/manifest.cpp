@@ -1,4 +1,4 @@
-#include "batch/manifest.hpp"
+#include "lidar_sgm/sequence/manifest.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <utility>
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 std::string jsonEscape(const std::string& text) {
   std::string out;
@@ -178,5 +178,5 @@ void Manifest::append(const FrameRecord& record) {
   }
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

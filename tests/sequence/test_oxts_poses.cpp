@@ -16,12 +16,12 @@
 
 #include <Eigen/Geometry>
 
-#include "batch/frame_list.hpp"
-#include "batch/oxts_poses.hpp"
-#include "batch/poses.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
+#include "lidar_sgm/sequence/oxts_poses.hpp"
+#include "lidar_sgm/sequence/poses.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 namespace fs = std::filesystem;
 
@@ -274,5 +274,5 @@ TEST_F(OxtsPoses, AMissingOrMalformedPacketOrCalibrationIsNamed) {
 }
 
 }  // namespace
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

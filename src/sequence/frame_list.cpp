@@ -1,4 +1,4 @@
-#include "batch/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -8,17 +8,16 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "common/output_paths.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 
 namespace fs = std::filesystem;
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 
 bool isScan(const fs::path& path) {
-  const std::string extension = lowerExtension(path.string());
+  const std::string extension = io::lowerExtension(path.string());
   return extension == ".bin" || extension == ".pcd" || extension == ".ply";
 }
 
@@ -35,7 +34,7 @@ std::set<std::string> imageStems(const fs::path& folder) {
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     std::error_code typeError;
-    if (it->is_regular_file(typeError) && lowerExtension(it->path().string()) == ".png") {
+    if (it->is_regular_file(typeError) && io::lowerExtension(it->path().string()) == ".png") {
       stems.insert(it->path().stem().string());
     }
   }
@@ -246,5 +245,5 @@ std::vector<Frame> framesOfShard(const std::vector<Frame>& frames, const Shard& 
   return mine;
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -1,4 +1,4 @@
-#include "batch/number_line.hpp"
+#include "number_line.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 std::vector<double> numbersOfLine(const std::string& line, const std::string& where) {
   std::istringstream fields(line);
@@ -25,5 +25,5 @@ std::vector<double> numbersOfLine(const std::string& line, const std::string& wh
   return numbers;
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -5,16 +5,12 @@
 
 #include <Eigen/Geometry>
 
-#include "batch/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
 #include "lidar_sgm/geometry/calibration.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
 
 namespace lidar_sgm {
-namespace apps {
-
-/// Tr of a KITTI odometry calib.txt: the LiDAR into the rectified camera 0, the camera KITTI's
-/// poses refer to. Throws std::invalid_argument naming the file when it has no valid Tr line.
-Eigen::Isometry3d readKittiOdometryTr(const std::string& calibPath);
+namespace sequence {
 
 /// T_pose_lidar: the LiDAR into the camera the poses refer to. KITTI odometry's poses are of
 /// camera 0 (the rectified reference camera, whose P0 has no offset), while the calibration's
@@ -30,5 +26,5 @@ Eigen::Isometry3d poseCameraFromLidar(const Frame& frame, const geometry::Stereo
 Eigen::Isometry3d cloudToWorld(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& poseCameraFromLidar,
                                const geometry::StereoCalibration& calibration, geometry::OutputFrame cloudFrame);
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

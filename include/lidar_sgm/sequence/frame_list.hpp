@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// How a frame's calibration file is read.
 enum class CalibrationFormat {
@@ -74,5 +74,5 @@ Shard parseShard(const std::string& text);
 /// The frames of `shard`, in order.
 std::vector<Frame> framesOfShard(const std::vector<Frame>& frames, const Shard& shard);
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -1,4 +1,4 @@
-#include "batch/frame_runner.hpp"
+#include "lidar_sgm/sequence/frame_runner.hpp"
 
 #include <condition_variable>
 #include <exception>
@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 std::size_t runFramesInOrder(std::size_t count, int jobs, const FrameWork& work, const FrameDone& done,
                              const StopAsked& stop) {
@@ -77,5 +77,5 @@ std::size_t runFramesInOrder(std::size_t count, int jobs, const FrameWork& work,
   return finished;
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

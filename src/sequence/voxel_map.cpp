@@ -1,11 +1,11 @@
-#include "batch/voxel_map.hpp"
+#include "lidar_sgm/sequence/voxel_map.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 
 /// Beyond 2^52 voxels a double no longer holds every integer: neighbouring voxels would merge.
@@ -92,5 +92,5 @@ pcl::PointCloud<PointXYZRGBConfidence> VoxelMap::points() const {
   return map;
 }
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

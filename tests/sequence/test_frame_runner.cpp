@@ -9,10 +9,10 @@
 #include <thread>
 #include <vector>
 
-#include "batch/frame_runner.hpp"
+#include "lidar_sgm/sequence/frame_runner.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 namespace {
 
 FrameRecord recordOf(std::size_t index) {
@@ -88,5 +88,5 @@ TEST(FrameRunner, AnEscapingExceptionStopsTheRunAndReachesTheCaller) {
 }
 
 }  // namespace
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

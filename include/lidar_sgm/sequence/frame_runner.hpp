@@ -7,10 +7,10 @@
 #include <cstddef>
 #include <functional>
 
-#include "batch/manifest.hpp"
+#include "lidar_sgm/sequence/manifest.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// Does frame `index` on worker `worker` (0 <= worker < jobs) and returns its record; must not
 /// throw for a frame's own failure (that is a "failed" record).
@@ -28,5 +28,5 @@ using StopAsked = std::function<bool()>;
 std::size_t runFramesInOrder(std::size_t count, int jobs, const FrameWork& work, const FrameDone& done,
                              const StopAsked& stop);
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -3,11 +3,11 @@
 
 #include <string>
 
-#include "batch/voxel_map.hpp"
+#include "lidar_sgm/sequence/voxel_map.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// A dense cloud as lidar_sgm_batch writes it (.pcd or .ply; x y z, and rgb and confidence when
 /// present). Throws std::runtime_error naming the file when it cannot be read or has no x/y/z.
@@ -18,5 +18,5 @@ MapInput readFrameCloud(const std::string& path);
 /// `format`. Throws std::runtime_error naming the file.
 void writeMapCloud(const std::string& path, const VoxelMap& map, io::CloudFormat format = io::CloudFormat::Binary);
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -6,12 +6,12 @@
 #include <vector>
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// The whitespace-separated numbers of `line`. Throws std::invalid_argument "<where>: 'x' is not
 /// a number" for a token that is not wholly a number (strtod alone reads "0.5m" as 0.5), and
 /// "... is not a finite number" for nan, inf or an overflow.
 std::vector<double> numbersOfLine(const std::string& line, const std::string& where);
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

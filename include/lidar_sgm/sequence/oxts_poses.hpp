@@ -8,10 +8,10 @@
 
 #include <Eigen/Geometry>
 
-#include "batch/frame_list.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
 
 namespace lidar_sgm {
-namespace apps {
+namespace sequence {
 
 /// The values of one OXTS packet: a line of 30 numbers, of which the pose uses the first six.
 constexpr std::size_t kOxtsPacketValues = 30;
@@ -53,5 +53,5 @@ std::vector<Eigen::Isometry3d> oxtsPosesOfDrive(const std::vector<Frame>& frames
 /// The folder of the drive's packets, for messages ("DRIVE/oxts/data").
 std::string oxtsFolderOf(const std::vector<Frame>& frames);
 
-}  // namespace apps
+}  // namespace sequence
 }  // namespace lidar_sgm

@@ -1,0 +1,15 @@
+#pragma once
+// A frame's calibration, whatever its layout's calibration format.
+
+#include "lidar_sgm/geometry/calibration.hpp"
+#include "lidar_sgm/sequence/frame_list.hpp"
+
+namespace lidar_sgm {
+namespace sequence {
+
+/// `frame.calib` read in `frame.calibFormat` (io::readCalibration, or
+/// io::readKittiOdometryCalibration); `width`/`height` as those (0 = from the images).
+geometry::StereoCalibration readFrameCalibration(const Frame& frame, int width = 0, int height = 0);
+
+}  // namespace sequence
+}  // namespace lidar_sgm
