@@ -20,7 +20,7 @@ namespace detail {
 ///
 /// Why not PCL's blob writer: it maps the file (a full disk then kills the process with
 /// SIGBUS) and copies whole point records, padding included (PointXYZRGB: 32 bytes, 16 of them padding); on a 424k-point KITTI cloud it took
-/// 26-29 ms for 13.6 MB, this one 8 ms for 6.8 MB (README, "Output formats").
+/// 26-29 ms for 13.6 MB, this one 8 ms for 6.8 MB (docs/TOOLS.md, "Output formats").
 void writeBinaryPcd(AtomicFile& out, const pcl::PCLPointCloud2& layout, const std::uint8_t* records);
 
 }  // namespace detail

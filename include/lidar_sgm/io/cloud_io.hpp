@@ -55,7 +55,7 @@ pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t 
 /// extension is an error naming the accepted ones.
 pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
 
-/// How writeCloud encodes the points. Measured on a 424k-point XYZRGB KITTI cloud (README,
+/// How writeCloud encodes the points. Measured on a 424k-point XYZRGB KITTI cloud (docs/TOOLS.md,
 /// "Output formats"): binary PCD 8 ms / 6.8 MB, compressed 165 ms / 6.6 MB, ASCII about 1 s /
 /// 19 MB.
 enum class CloudFormat {
