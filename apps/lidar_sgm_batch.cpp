@@ -30,7 +30,7 @@
 #include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
-#include "common/sgm_options.hpp"
+#include "common/config_arguments.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "densify/densify_options.hpp"
@@ -104,7 +104,7 @@ void printHelp(const char* program) {
       "  -jobs J                  frames densified at once, each on its own worker (0 = one per CPU this\n"
       "                           process may use); the matcher threads of each are -threads, else those\n"
       "                           CPUs shared out; neither changes a cloud (default: 0)\n" +
-      lidar_sgm::apps::sgmSpeedHelp();
+      lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Speed, lidar_sgm::OptionScope::Cloud);
   const std::vector<lidar_sgm::apps::HelpExample> examples{
       {"A drive rendered by 'lidar_sgm_synth -out drive -sequence 3 -step 1' (KITTI odometry layout), with its map:",
        "lidar_sgm_batch -input_dir drive -output_dir drive_dense -map drive_map.pcd"},
@@ -116,16 +116,18 @@ void printHelp(const char* program) {
   const std::string text = lidar_sgm::apps::helpText(usage,
                                                      {{"Inputs", inputs},
                                                       {"Outputs", outputs},
-                                                      {"Method", lidar_sgm::apps::sgmMethodHelp()},
+                                                      {"Method", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Method,
+                                                                                            lidar_sgm::OptionScope::Cloud)},
                                                       {"Speed", speed},
-                                                      {"Filters", lidar_sgm::apps::densifyFilterOptionsHelp()}},
+                                                      {"Filters", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Filters,
+                                                                                             lidar_sgm::OptionScope::Cloud)}},
                                                      examples);
   std::fputs(text.c_str(), stdout);
 }
 
 /// -jobs (0 = one per CPU this process may use) and the matcher threads of each (-threads, else
 /// those CPUs shared out): results never depend on either.
-void jobsAndThreads(const Arguments& args, int& jobs, int& threads) {
+void jobsAndThreads(const Arguments& args, const lidar_sgm::DensifierConfig& config, int& jobs, int& threads) {
   // The CPUs this process may run on (a Slurm task's or a container's share), not the machine's.
   cpu_set_t cpus;
   const int hardware = sched_getaffinity(0, sizeof(cpus), &cpus) == 0
@@ -134,7 +136,7 @@ void jobsAndThreads(const Arguments& args, int& jobs, int& threads) {
   jobs = args.integer("jobs", 0);
   if (jobs < 0) throw std::invalid_argument("option -jobs: must be >= 0 (0 = one per hardware thread)");
   if (jobs == 0) jobs = hardware;
-  threads = args.has("threads") ? lidar_sgm::apps::parametersFrom(args).threads : std::max(1, hardware / jobs);
+  threads = args.has("threads") ? config.matcher.threads : std::max(1, hardware / jobs);
 }
 
 int run(int argc, char** argv) {
@@ -154,14 +156,15 @@ int run(int argc, char** argv) {
   }
   const std::string outDir = args.text("output_dir", "");
   if (outDir.empty()) throw std::invalid_argument("-output_dir OUT is required");
-  lidar_sgm::apps::checkDensifyOptions(args);  // every bad option before any frame is read
+  // Every bad option is refused before any frame is read.
+  const lidar_sgm::DensifierConfig config = lidar_sgm::apps::checkedDensifyOptions(args);
   const lidar_sgm::sequence::Shard shard = lidar_sgm::sequence::parseShard(args.text("shard", "0/1"));
   const lidar_sgm::apps::MapOptions mapOptions = lidar_sgm::apps::mapOptionsFrom(args, shard);
   const int progressEvery = args.integer("progress", kDefaultProgressEvery);
   if (progressEvery < 1) throw std::invalid_argument("option -progress: must be >= 1 (frames)");
   int jobs = 1;
   int threads = 1;
-  jobsAndThreads(args, jobs, threads);
+  jobsAndThreads(args, config, jobs, threads);
   const std::string extension = args.text("extension", "pcd");
   if (extension != "pcd" && extension != "ply") {
     throw std::invalid_argument("option -extension: '" + extension + "' must be pcd or ply");
@@ -185,7 +188,7 @@ int run(int argc, char** argv) {
   const std::vector<Frame> frames = lidar_sgm::sequence::framesOfShard(all, shard);
   std::optional<lidar_sgm::apps::SequenceMap> map;
   if (!mapOptions.mapPath.empty()) {
-    map.emplace(mapOptions, all, lidar_sgm::apps::outputOptionsFrom(args).frame, width, height);
+    map.emplace(mapOptions, all, config.reprojection.frame, width, height);
     std::printf("Poses: %s\n", map->posesSource().c_str());
   }
   fs::create_directories(outDir);
@@ -226,7 +229,7 @@ int run(int argc, char** argv) {
   // From the whole sequence, not the shard: every shard checks its frames against the same size.
   const std::map<std::string, lidar_sgm::apps::CalibrationImage> shared = lidar_sgm::apps::sharedCalibrationImages(all);
   for (int j = 0; j < jobs; ++j) {
-    densifiers.push_back(std::make_unique<lidar_sgm::apps::FrameDensifier>(args, width, height, threads, shared));
+    densifiers.push_back(std::make_unique<lidar_sgm::apps::FrameDensifier>(args, config, width, height, threads, shared));
   }
   const bool overwrite = args.has("overwrite");
 

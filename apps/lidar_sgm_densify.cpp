@@ -98,15 +98,15 @@ void printHelp(const char* program) {
       usage,
       {{"Inputs", inputs},
        {"Outputs", outputs},
-       {"Method", lidar_sgm::apps::sgmMethodHelp()},
-       {"Speed", lidar_sgm::apps::sgmSpeedHelp()},
-       {"Filters", lidar_sgm::apps::densifyFilterOptionsHelp()}},
+       {"Method", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Method, lidar_sgm::OptionScope::Cloud)},
+       {"Speed", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Speed, lidar_sgm::OptionScope::Cloud)},
+       {"Filters", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Filters, lidar_sgm::OptionScope::Cloud)}},
       examples);
   std::fputs(text.c_str(), stdout);
 }
 
-/// -format, -frame, -max_depth, -stride (shared with lidar_sgm_batch), and OUTPUT's extension
-/// for the format, checked before any file is read.
+/// -format and -voxel (shared with lidar_sgm_batch), and OUTPUT's extension for the format,
+/// checked before any file is read.
 OutputOptions checkedOutputOptions(const Arguments& args) {
   const OutputOptions o = lidar_sgm::apps::outputOptionsFrom(args);
   try {
@@ -118,7 +118,7 @@ OutputOptions checkedOutputOptions(const Arguments& args) {
 }
 
 /// -preview_* (checked before any file is read); the cloud's -max_depth bounds the picture too.
-lidar_sgm::io::CloudPreviewOptions previewOptionsFrom(const Arguments& args) {
+lidar_sgm::io::CloudPreviewOptions previewOptionsFrom(const Arguments& args, const lidar_sgm::DensifierConfig& config) {
   lidar_sgm::io::CloudPreviewOptions o;
   if (args.has("preview_size")) parseImageSize(args.text("preview_size", ""), o.width, o.height, "preview_size");
   o.cameraHeight = args.number("preview_height", o.cameraHeight);
@@ -129,8 +129,7 @@ lidar_sgm::io::CloudPreviewOptions previewOptionsFrom(const Arguments& args) {
   if (color != "image" && color != "depth") {
     throw std::invalid_argument("option -preview_color: '" + color + "' must be image or depth");
   }
-  const double maxDepth = args.number("max_depth", o.maxDepth);
-  if (maxDepth > 0.0) o.maxDepth = maxDepth;
+  if (std::isfinite(config.reprojection.maxDepth)) o.maxDepth = config.reprojection.maxDepth;
   try {
     lidar_sgm::io::validate(o);
   } catch (const std::invalid_argument& e) {
@@ -163,16 +162,16 @@ std::size_t validPixels(const lidar_sgm::Image<std::int16_t>& disparity) {
 }
 
 template <typename PointOutT>
-int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan,
+int densify(const Arguments& args, const lidar_sgm::DensifierConfig& config, const pcl::PointCloud<pcl::PointXYZI>::Ptr& scan,
             const lidar_sgm::geometry::StereoCalibration& calibration, const cv::Mat& left, const cv::Mat& right,
             lidar_sgm::io::OutputTransaction& outputs) {
   lidar_sgm::SGMDensification<pcl::PointXYZI, PointOutT> sgm;
   sgm.setInputCloud(scan);
   sgm.setCalibration(calibration);
-  const lidar_sgm::Parameters params = lidar_sgm::apps::parametersFrom(args);
-  lidar_sgm::apps::configureDensification(sgm, args);
+  sgm.setConfig(config);
+  const lidar_sgm::Parameters& params = config.matcher;
   const OutputOptions out = checkedOutputOptions(args);
-  const std::string frame = args.text("frame", "lidar");
+  const lidar_sgm::geometry::OutputFrame frame = config.reprojection.frame;
   // Matching sees the images' full depth (8 or 16 bit gray); the output's color is 8-bit. Both
   // come from the image decoded once.
   lidar_sgm::apps::setImages(sgm, left, right);
@@ -182,7 +181,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
   if (!sgm.getLastError().empty()) throw std::runtime_error(sgm.getLastError());
   if (dense.empty()) {
     throw std::runtime_error("the dense cloud is empty: no pixel has a disparity within -max_depth " +
-                             std::to_string(out.maxDepth) + " m");
+                             std::to_string(config.reprojection.maxDepth) + " m");
   }
   const auto& timings = sgm.getTimings();
   const auto& stats = sgm.getProjectedLidar().stats;
@@ -198,7 +197,7 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
               sgm.getFilterStats().sky, sgm.getFilterStats().outliers);
   std::printf("disparity range: %s\n", sgm.getUsedDisparityRange().describe().c_str());
   std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
-              dense.width, dense.height, frame.c_str());
+              dense.width, dense.height, frame == lidar_sgm::geometry::OutputFrame::Camera ? "camera" : "lidar");
   if (out.voxel > 0.0) {
     const Timer voxelTimer;
     const std::size_t before = dense.size();
@@ -221,9 +220,9 @@ int densify(const Arguments& args, const pcl::PointCloud<pcl::PointXYZI>::Ptr& s
     std::fflush(stdout);
     std::vector<Eigen::Vector3f> points;
     std::vector<lidar_sgm::Rgb8> colors;
-    previewPoints(dense, out.frame, sgm.getCalibration(), points, colors);
+    previewPoints(dense, frame, sgm.getCalibration(), points, colors);
     if (args.text("preview_color", "image") == "depth") colors.clear();
-    preview = lidar_sgm::io::renderCloudPreview(points, colors, previewOptionsFrom(args));
+    preview = lidar_sgm::io::renderCloudPreview(points, colors, previewOptionsFrom(args, config));
     std::printf(" [done, %.1f ms : %zu points, %dx%d]\n", previewTimer.elapsedMs(), points.size(), preview.cols,
                 preview.rows);
   }
@@ -307,9 +306,10 @@ int run(int argc, char** argv) {
     }
     outputs.push_back(path);
   }
-  lidar_sgm::apps::checkDensifyOptions(args);  // reject bad options before loading anything
+  // Bad options are refused before anything is loaded.
+  const lidar_sgm::DensifierConfig config = lidar_sgm::apps::checkedDensifyOptions(args);
   checkedOutputOptions(args);
-  previewOptionsFrom(args);
+  previewOptionsFrom(args, config);
   int width = 0;
   int height = 0;
   if (args.has("image_size")) parseImageSize(args.text("image_size", ""), width, height);
@@ -331,11 +331,11 @@ int run(int argc, char** argv) {
   const cv::Mat& right = loaded.right;
   // Colored output when an image can color it; with the confidence field unless it is off.
   if (args.has("no_confidence")) {
-    return left.empty() ? densify<pcl::PointXYZ>(args, scan, calibration, left, right, transaction)
-                        : densify<pcl::PointXYZRGB>(args, scan, calibration, left, right, transaction);
+    return left.empty() ? densify<pcl::PointXYZ>(args, config, scan, calibration, left, right, transaction)
+                        : densify<pcl::PointXYZRGB>(args, config, scan, calibration, left, right, transaction);
   }
-  return left.empty() ? densify<lidar_sgm::PointXYZConfidence>(args, scan, calibration, left, right, transaction)
-                      : densify<lidar_sgm::PointXYZRGBConfidence>(args, scan, calibration, left, right, transaction);
+  return left.empty() ? densify<lidar_sgm::PointXYZConfidence>(args, config, scan, calibration, left, right, transaction)
+                      : densify<lidar_sgm::PointXYZRGBConfidence>(args, config, scan, calibration, left, right, transaction);
 }
 
 }  // namespace

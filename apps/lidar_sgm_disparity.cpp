@@ -7,12 +7,11 @@
 #include <vector>
 
 #include "common/arguments.hpp"
-#include "common/filter_options.hpp"
+#include "common/config_arguments.hpp"
 #include "common/help_layout.hpp"
 #include "common/help_version.hpp"
 #include "common/output_paths.hpp"
 #include "lidar_sgm/io/output_transaction.hpp"
-#include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "lidar_sgm/io/image_io.hpp"
@@ -22,11 +21,11 @@
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
 using lidar_sgm::apps::Timer;
+using lidar_sgm::apps::configHelp;
 using lidar_sgm::apps::joined;
-using lidar_sgm::apps::parametersFrom;
 using lidar_sgm::apps::samePath;
-using lidar_sgm::apps::sgmFlagOptions;
-using lidar_sgm::apps::sgmValueOptions;
+using lidar_sgm::OptionGroup;
+using lidar_sgm::OptionScope;
 
 namespace {
 
@@ -47,11 +46,6 @@ void printHelp(const char* program) {
       "  -color OUT_COLOR.png     also write a color-mapped picture of the disparity (invalid = black)\n"
       "  -confidence OUT_CONF.png also write the confidence (8-bit gray: 255 x the probability that the\n"
       "                           disparity is right, 0 = none)\n";
-  const std::string filters =
-      lidar_sgm::apps::sgmConfidenceHelp() +
-      "  -no_crop_to_scan         LiDAR-only: keep pixels above the scan's top / below its bottom beam (default:\n"
-      "                           cleared, nothing was measured there; as lidar_sgm_densify)\n" +
-      lidar_sgm::apps::filterOptionsHelp();
   const std::string left = "data/sample/image_2/000000.png";
   const std::string right = "data/sample/image_3/000000.png";
   const std::string lidar = "data/sample/lidar_disp/000000.png";
@@ -66,9 +60,9 @@ void printHelp(const char* program) {
   const std::string text = lidar_sgm::apps::helpText(usage,
                                                      {{"Inputs", inputs},
                                                       {"Outputs", outputs},
-                                                      {"Method", lidar_sgm::apps::sgmMethodHelp()},
-                                                      {"Speed", lidar_sgm::apps::sgmSpeedHelp()},
-                                                      {"Filters", filters}},
+                                                      {"Method", configHelp(OptionGroup::Method, OptionScope::Disparity)},
+                                                      {"Speed", configHelp(OptionGroup::Speed, OptionScope::Disparity)},
+                                                      {"Filters", configHelp(OptionGroup::Filters, OptionScope::Disparity)}},
                                                      examples);
   std::fputs(text.c_str(), stdout);
 }
@@ -79,9 +73,9 @@ void requirePngOutput(const std::string& path, const std::vector<std::string>& i
 
 int run(int argc, char** argv) {
   const Arguments args(argc, argv,
-                       joined(joined(sgmValueOptions(), lidar_sgm::apps::filterValueOptions()),
+                       joined(lidar_sgm::apps::configValueOptions(OptionScope::Disparity),
                               {"lidar", "lidar_depth", "fb", "color", "confidence"}),
-                       joined(joined(sgmFlagOptions(), lidar_sgm::apps::filterFlagOptions()), {"no_crop_to_scan"}));
+                       lidar_sgm::apps::configFlagOptions(OptionScope::Disparity));
   if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_disparity", [&] { printHelp(argv[0]); })) return 0;
   const std::vector<std::string>& files = args.positionals();
   if (files.size() != 2 && files.size() != 3) {
@@ -123,10 +117,10 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("-confidence must differ from OUT.png and -color");
     }
   }
-  const lidar_sgm::Parameters params = parametersFrom(args);
-  const lidar_sgm::OutputFilterOptions outputFilters = lidar_sgm::apps::outputFiltersFrom(args);
-  const lidar_sgm::Backend backend = lidar_sgm::apps::backendFrom(args);
-  const bool fixedRange = lidar_sgm::apps::fixedDisparityRange(args);
+  // This tool stops at the disparity (no calibration, no cloud).
+  lidar_sgm::DensifierConfig config = lidar_sgm::apps::configFrom(args, OptionScope::Disparity);
+  config.computeCloud = false;
+  const lidar_sgm::Parameters& params = config.matcher;
   // Folders and permissions checked now, before any work; nothing replaced until all are written.
   std::vector<std::string> outputPaths{outPath};
   if (!colorPath.empty()) outputPaths.push_back(colorPath);
@@ -166,17 +160,9 @@ int run(int argc, char** argv) {
     for (const std::string& warning : check.warnings) std::fprintf(stderr, "Warning: %s\n", warning.c_str());
   }
 
-  // The pipeline every tool runs; this tool stops at the disparity (no calibration, no cloud).
+  // The pipeline every tool runs.
   lidar_sgm::Densifier densifier;
-  densifier.setParameters(params);
-  densifier.setBackend(backend);
-  densifier.setDisparityRangeMode(fixedRange ? lidar_sgm::DisparityRangeMode::Fixed
-                                             : lidar_sgm::DisparityRangeMode::FromLidar);
-  densifier.setComputeCloud(false);
-  densifier.setCropToScan(!args.has("no_crop_to_scan"));
-  densifier.setMinConfidence(lidar_sgm::apps::minConfidenceFrom(args));
-  densifier.setOutputFilters(outputFilters);
-  densifier.setPairCheck(lidar_sgm::apps::pairCheckFrom(args));
+  densifier.setConfig(config);
   if (stereo) densifier.setStereoPair(lidar_sgm::io::grayView(left), lidar_sgm::io::grayView(right));
   Timer sgmTimer;
   const bool lidarOnly = !stereo;

@@ -50,14 +50,12 @@ LoadedFrame load(const sequence::Frame& frame, int width, int height, std::uint6
 }
 
 template <typename PointOutT>
-FrameResult densifyWith(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, const Arguments& args, int threads,
-                        const LoadedFrame& data, const std::string& outPath, sequence::FrameTimings ms) {
+FrameResult densifyWith(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, const DensifierConfig& config,
+                        const OutputOptions& out, const LoadedFrame& data, const std::string& outPath,
+                        sequence::FrameTimings ms) {
   sgm.setInputCloud(data.scan);
   sgm.setCalibration(data.calibration);
-  configureDensification(sgm, args);
-  Parameters params = sgm.getParameters();
-  params.threads = threads;
-  sgm.setParameters(params);
+  sgm.setConfig(config);
   setImages(sgm, data.left, data.right);
   pcl::PointCloud<PointOutT> dense;
   sgm.filter(dense);
@@ -67,7 +65,6 @@ FrameResult densifyWith(SGMDensification<pcl::PointXYZI, PointOutT>& sgm, const 
   ms.match = sgm.getTimings().match;
   ms.reproject = sgm.getTimings().reproject;
   const Timer saveTimer;
-  const OutputOptions out = outputOptionsFrom(args);
   voxelDownsample(dense, out.voxel);
   io::writeCloud(outPath, dense, out.format);
   ms.save = saveTimer.elapsedMs();
@@ -108,25 +105,27 @@ struct FrameDensifier::Densifications {
   }
 };
 
-FrameDensifier::FrameDensifier(const Arguments& args, int width, int height, int threads,
-                               std::map<std::string, CalibrationImage> shared)
-    : args_(args), width_(width), height_(height), threads_(threads), shared_(std::move(shared)),
-      densifications_(std::make_unique<Densifications>()) {}
+FrameDensifier::FrameDensifier(const Arguments& args, const DensifierConfig& config, int width, int height,
+                               int threads, std::map<std::string, CalibrationImage> shared)
+    : config_(config), out_(outputOptionsFrom(args)), maxPoints_(maxPointsFrom(args)), width_(width), height_(height),
+      shared_(std::move(shared)), densifications_(std::make_unique<Densifications>()) {
+  config_.matcher.threads = threads;
+}
 
 FrameDensifier::~FrameDensifier() = default;
 
 FrameResult FrameDensifier::densify(const sequence::Frame& frame, const std::string& outPath) {
   const Timer loadTimer;
-  const LoadedFrame data = load(frame, width_, height_, maxPointsFrom(args_), shared_);
+  const LoadedFrame data = load(frame, width_, height_, maxPoints_, shared_);
   sequence::FrameTimings ms;
   ms.load = loadTimer.elapsedMs();
   Densifications& d = *densifications_;
-  if (args_.has("no_confidence")) {
-    return data.left.empty() ? densifyWith(Densifications::get(d.xyz), args_, threads_, data, outPath, ms)
-                             : densifyWith(Densifications::get(d.rgb), args_, threads_, data, outPath, ms);
+  if (!config_.matcher.confidence) {
+    return data.left.empty() ? densifyWith(Densifications::get(d.xyz), config_, out_, data, outPath, ms)
+                             : densifyWith(Densifications::get(d.rgb), config_, out_, data, outPath, ms);
   }
-  return data.left.empty() ? densifyWith(Densifications::get(d.xyzConfidence), args_, threads_, data, outPath, ms)
-                           : densifyWith(Densifications::get(d.rgbConfidence), args_, threads_, data, outPath, ms);
+  return data.left.empty() ? densifyWith(Densifications::get(d.xyzConfidence), config_, out_, data, outPath, ms)
+                           : densifyWith(Densifications::get(d.rgbConfidence), config_, out_, data, outPath, ms);
 }
 
 }  // namespace apps

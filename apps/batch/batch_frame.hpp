@@ -10,6 +10,8 @@
 #include "lidar_sgm/sequence/frame_list.hpp"
 #include "lidar_sgm/sequence/manifest.hpp"
 #include "common/arguments.hpp"
+#include "densify/densify_options.hpp"
+#include "lidar_sgm/pipeline/densifier_config.hpp"
 
 namespace lidar_sgm {
 namespace apps {
@@ -33,17 +35,18 @@ struct CalibrationImage {
 /// not its own (KITTI's odometry calib.txt carries no size to check against).
 std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<sequence::Frame>& frames);
 
-/// Densifies frames one after another with the method options of `args` (densify_options.hpp),
+/// Densifies frames one after another with one configuration (the option table's, read once),
 /// keeping one SGMDensification per output point type so that the matcher's buffers are
 /// allocated once per worker, not once per frame (the result does not depend on it: every
 /// buffer is written before it is read, and each frame's setInputCloud() drops the images of
 /// the frame before). Not thread-safe: one per worker thread.
 class FrameDensifier {
  public:
-  /// `width`/`height` is -image_size (0 = from the calibration or the images); `threads` the
-  /// matcher's threads for this worker (never changes a result); `shared` is
-  /// sharedCalibrationImages() of the whole sequence.
-  FrameDensifier(const Arguments& args, int width, int height, int threads,
+  /// `config` is the Densifier's configuration and `args` the tool's own options (-format,
+  /// -voxel, -max_points); `width`/`height` is -image_size (0 = from the calibration or the
+  /// images); `threads` the matcher's threads for this worker (never changes a result); `shared`
+  /// is sharedCalibrationImages() of the whole sequence.
+  FrameDensifier(const Arguments& args, const DensifierConfig& config, int width, int height, int threads,
                  std::map<std::string, CalibrationImage> shared);
   ~FrameDensifier();
   FrameDensifier(const FrameDensifier&) = delete;
@@ -56,10 +59,11 @@ class FrameDensifier {
 
  private:
   struct Densifications;
-  const Arguments& args_;
+  DensifierConfig config_;  ///< with this worker's threads
+  OutputOptions out_;
+  std::uint64_t maxPoints_;
   int width_;
   int height_;
-  int threads_;
   std::map<std::string, CalibrationImage> shared_;
   std::unique_ptr<Densifications> densifications_;
 };

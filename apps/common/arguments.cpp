@@ -1,13 +1,12 @@
 #include "common/arguments.hpp"
 
 #include <cctype>
-#include <cmath>
-#include <cstdlib>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
 #include "common/pcl_style_options.hpp"
+#include "lidar_sgm/core/option_text.hpp"
 
 namespace lidar_sgm {
 namespace apps {
@@ -69,24 +68,17 @@ std::string Arguments::text(const std::string& name, const std::string& fallback
 
 int Arguments::integer(const std::string& name, int fallback) const {
   const auto it = values_.find(name);
-  if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  const long value = std::strtol(it->second.c_str(), &end, 10);
-  if (it->second.empty() || *end != '\0' || value < -1000000000L || value > 1000000000L) {
-    throw std::invalid_argument("option -" + name + ": '" + it->second + "' is not an integer");
-  }
-  return static_cast<int>(value);
+  return it == values_.end() ? fallback : parseOptionInteger(name, it->second);
 }
 
 double Arguments::number(const std::string& name, double fallback) const {
   const auto it = values_.find(name);
-  if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  const double value = std::strtod(it->second.c_str(), &end);
-  if (it->second.empty() || *end != '\0' || !std::isfinite(value)) {
-    throw std::invalid_argument("option -" + name + ": '" + it->second + "' is not a finite number");
-  }
-  return value;
+  return it == values_.end() ? fallback : parseOptionNumber(name, it->second);
+}
+
+std::set<std::string> joined(std::set<std::string> a, const std::set<std::string>& b) {
+  a.insert(b.begin(), b.end());
+  return a;
 }
 
 }  // namespace apps

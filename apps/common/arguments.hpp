@@ -43,5 +43,8 @@ class Arguments {
   bool version_ = false;
 };
 
+/// The union of two option sets.
+std::set<std::string> joined(std::set<std::string> a, const std::set<std::string>& b);
+
 }  // namespace apps
 }  // namespace lidar_sgm

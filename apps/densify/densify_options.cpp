@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
-#include <limits>
 #include <stdexcept>
 
 namespace lidar_sgm {
@@ -17,16 +16,6 @@ OutputOptions outputOptionsFrom(const Arguments& args) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("option -format: ") + e.what());
   }
-  const std::string frame = args.text("frame", "lidar");
-  if (frame != "lidar" && frame != "camera") {
-    throw std::invalid_argument("option -frame: '" + frame + "' must be lidar or camera");
-  }
-  o.frame = frame == "camera" ? geometry::OutputFrame::Camera : geometry::OutputFrame::Lidar;
-  o.maxDepth = args.number("max_depth", o.maxDepth);
-  if (o.maxDepth < 0.0) throw std::invalid_argument("option -max_depth: must be >= 0 [m] (0 = keep all)");
-  if (o.maxDepth == 0.0) o.maxDepth = std::numeric_limits<double>::infinity();
-  o.stride = args.integer("stride", o.stride);
-  if (o.stride < 1) throw std::invalid_argument("option -stride: must be >= 1");
   o.voxel = args.number("voxel", o.voxel);
   if (!(o.voxel >= 0.0) || !std::isfinite(o.voxel)) {
     throw std::invalid_argument("option -voxel: must be a finite edge >= 0 [m] (0 = no down-sampling)");
@@ -70,48 +59,20 @@ void requireOrganizedImage(const std::string& path, const cv::Mat& image) {
 }
 
 std::set<std::string> densifyValueOptions() {
-  return joined(joined(sgmValueOptions(), filterValueOptions()),
-                {"image_size", "format", "frame", "max_depth", "stride", "voxel", "max_points"});
+  return joined(configValueOptions(OptionScope::Cloud), {"image_size", "format", "voxel", "max_points"});
 }
 
-std::set<std::string> densifyFlagOptions() {
-  return joined(joined(sgmFlagOptions(), filterFlagOptions()),
-                {"keep_organized", "no_occlusion_filter", "no_crop_to_scan"});
-}
+std::set<std::string> densifyFlagOptions() { return configFlagOptions(OptionScope::Cloud); }
 
 std::string outputOptionsHelp() {
-  const geometry::ReprojectionOptions reprojection;
-  char text[1600];
-  std::snprintf(
-      text, sizeof(text),
-      "  -format binary|compressed|ascii\n"
-      "                           OUTPUT's encoding: binary (PCD DATA binary, PLY binary_little_endian; the\n"
-      "                           fastest), compressed (PCD binary_compressed: PCL's LZF, 10-20x slower and\n"
-      "                           only ~3 %% smaller for a dense cloud; not for PLY) or ascii (text, ~60x\n"
-      "                           slower) (default: binary)\n"
-      "  -keep_organized          one point per pixel, NaN where there is none (default: valid points only)\n"
-      "  -frame lidar|camera      output frame (default: lidar, the input's frame)\n"
-      "  -max_depth M             drop output points deeper than M metres, 0 = keep all (default: %g)\n"
-      "  -stride S                every S-th pixel in x and y (default: %d)\n"
-      "  -voxel V                 down-sample to one point per V-metre voxel (pcl::VoxelGrid: the centroid,\n"
-      "                           color and confidence averaged; unorganized), 0 = off (default: 0)\n",
-      reprojection.maxDepth, reprojection.stride);
-  return text;
-}
-
-std::string densifyFilterOptionsHelp() {
-  const geometry::ProjectionOptions projection;
-  char text[1200];
-  std::snprintf(
-      text, sizeof(text),
-      "  -no_occlusion_filter     keep LiDAR points hidden from the camera (default: drop a point with points\n"
-      "                           more than max(%g px, %g*d) nearer on two opposite sides within +-%d columns,\n"
-      "                           +-%d rows)\n"
-      "  -no_crop_to_scan         LiDAR-only: keep points above the scan's top / below its bottom beam (default:\n"
-      "                           cleared, nothing was measured there)\n",
-      projection.occlusion.minGap, projection.occlusion.relativeGap, projection.occlusion.halfWidth,
-      projection.occlusion.halfHeight);
-  return sgmConfidenceHelp() + text + filterOptionsHelp();
+  return "  -format binary|compressed|ascii\n"
+         "                           OUTPUT's encoding: binary (PCD DATA binary, PLY binary_little_endian; the\n"
+         "                           fastest), compressed (PCD binary_compressed: PCL's LZF, 10-20x slower and\n"
+         "                           only ~3 % smaller for a dense cloud; not for PLY) or ascii (text, ~60x\n"
+         "                           slower) (default: binary)\n" +
+         configHelp(OptionGroup::Output, OptionScope::Cloud) +
+         "  -voxel V                 down-sample to one point per V-metre voxel (pcl::VoxelGrid: the centroid,\n"
+         "                           color and confidence averaged; unorganized), 0 = off (default: 0)\n";
 }
 
 std::string inputLimitOptionsHelp() {
@@ -135,19 +96,15 @@ std::uint64_t maxPointsFrom(const Arguments& args) {
   return value;
 }
 
-void checkDensifyOptions(const Arguments& args) {
+DensifierConfig checkedDensifyOptions(const Arguments& args) {
   maxPointsFrom(args);
-  parametersFrom(args);
-  outputFiltersFrom(args);
-  backendFrom(args);
-  fixedDisparityRange(args);
-  minConfidenceFrom(args);
   outputOptionsFrom(args);
   if (args.has("image_size")) {
     int width = 0;
     int height = 0;
     parseImageSize(args.text("image_size", ""), width, height);
   }
+  return configFrom(args, OptionScope::Cloud);
 }
 
 }  // namespace apps

@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "common/arguments.hpp"
-#include "common/filter_options.hpp"
+#include "common/config_arguments.hpp"
 #include "common/help_layout.hpp"
 #include "common/help_version.hpp"
-#include "common/sgm_options.hpp"
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
@@ -67,9 +66,8 @@ void printHelp(const char* program) {
       "  -scale 1|0.5       match the LiDAR-SGM methods at full or half resolution (0.5: the paper's fast\n"
       "                     mode; each frame's search range is rounded up to a multiple of 32) (default: 1)\n"
       "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n";
-  const std::string filters =
-      "  the output-filter options of lidar_sgm_disparity (-no_sky_filter, -no_outlier_filter, -sky_texture T,\n"
-      "  -outlier_min_neighbours N), for the LiDAR-SGM methods\n";
+  const std::string filters = "  the LiDAR-SGM methods run with these, as the tools:\n" +
+                              apps::configHelp(OptionGroup::Filters, OptionScope::Disparity);
   const std::vector<apps::HelpExample> examples{
       {"The documented run: every protocol, on the KITTI data in ../shared/data (minutes):",
        "lidar_sgm_eval -out out/eval"},
@@ -122,10 +120,10 @@ GroupSelection selectionFrom(const apps::Arguments& args, const std::string& roo
 }
 
 /// The LiDAR-SGM methods' search range, in words.
-std::string rangeText(const RangeChoice& range) {
+std::string rangeText(const GroupRunOptions& run) {
   const std::string fixed =
-      range.numDisparities > 0 ? "[0, " + std::to_string(range.numDisparities) + ")" : "the frame's";
-  if (range.mode == DisparityRangeMode::Fixed) return fixed + " (fixed)";
+      run.fixedNumDisparities > 0 ? "[0, " + std::to_string(run.fixedNumDisparities) + ")" : "the frame's";
+  if (run.config.rangeMode == DisparityRangeMode::Fixed) return fixed + " (fixed)";
   return "from each frame's LiDAR (without LiDAR: " + fixed + ")";
 }
 
@@ -152,8 +150,8 @@ void printPlan(const GroupSelection& selection, const std::string& out, const Gr
   std::printf("  methods:   %s; LiDAR-SGM at alpha %s%s\n", joinedText(methods, ", ").c_str(),
               joinedText(sweep, ", ").c_str(), threeCameras ? "; on P3 clear64 also the three-camera methods" : "");
   std::printf("  matcher:   backend %s, scale %g, alpha mode %s, %d threads in all, disparity range %s\n",
-              toString(resolve(run.backend)).c_str(), run.base.scale, toString(run.base.alphaMode).c_str(),
-              run.threads, rangeText(run.range).c_str());
+              toString(resolve(run.config.backend)).c_str(), run.config.matcher.scale,
+              toString(run.config.matcher.alphaMode).c_str(), run.threads, rangeText(run).c_str());
   std::printf("  outputs:   %s/results.md, %s/results.json, %s/plots/%s\n", out.c_str(), out.c_str(), out.c_str(),
               pictures ? (", " + out + "/pictures/").c_str() : "");
   std::fflush(stdout);
@@ -162,9 +160,9 @@ void printPlan(const GroupSelection& selection, const std::string& out, const Gr
 int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
-      apps::joined(apps::joined(apps::sgmValueOptions(), apps::filterValueOptions()),
+      apps::joined(apps::configValueOptions(OptionScope::Disparity),
                    {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
-      apps::joined(apps::joined(apps::sgmFlagOptions(), apps::filterFlagOptions()), {"no_pictures", "fit_confidence"}));
+      apps::joined(apps::configFlagOptions(OptionScope::Disparity), {"no_pictures", "fit_confidence"}));
   if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
     throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
@@ -172,23 +170,20 @@ int run(int argc, char** argv) {
   const std::string root = resolveDataRoot(args.text("data", ""));
   // Required: the run takes minutes and writes a folder, so it never starts by accident.
   const std::string out = args.text("out", "");
-  // The matcher parameters of every LiDAR-SGM method (alpha is the method's; numDisparities the
-  // frame's; threads are shared out by runGroup).
-  const Parameters base = apps::parametersFrom(args);
-  const Backend backend = apps::backendFrom(args);
+  // The configuration of every LiDAR-SGM method, as the tools read it (alpha is the method's;
+  // numDisparities the frame's; threads are shared out by runGroup).
+  const DensifierConfig config = apps::configFrom(args, OptionScope::Disparity);
+  const Parameters& base = config.matcher;
+  const Backend backend = config.backend;
   const double step = args.number("alpha_step", 0.1);
   if (!(step > 0.0 && step <= 1.0)) throw std::invalid_argument("option -alpha_step: must be in (0, 1]");
   const int threads = effectiveThreads(base);  // -threads, validated with the SGM options
   GroupRunOptions runOptions;
   runOptions.alphas = sweepAlphas(step);
   runOptions.threads = threads;
-  runOptions.base = base;
-  runOptions.backend = backend;
-  runOptions.filters = apps::outputFiltersFrom(args);
-  runOptions.minConfidence = apps::minConfidenceFrom(args);
-  runOptions.range.mode = apps::fixedDisparityRange(args) ? DisparityRangeMode::Fixed : DisparityRangeMode::FromLidar;
+  runOptions.config = config;
   // -num_disparities: that fixed range on every frame (e.g. the paper's 128); else the frame's.
-  if (args.has("num_disparities")) runOptions.range.numDisparities = base.numDisparities;
+  if (args.has("num_disparities")) runOptions.fixedNumDisparities = base.numDisparities;
   if (args.has("min_disparity")) {
     throw std::invalid_argument("option -min_disparity: the evaluation searches from 0 (the frames' GT starts there)");
   }
@@ -233,7 +228,7 @@ int run(int argc, char** argv) {
                 "\nLiDAR-SGM methods: backend %s, matched at scale %g%s, alpha mode %s, search range %s.\n",
                 toString(resolve(backend)).c_str(), base.scale,
                 base.scale == 1.0f ? " (full resolution)" : " (half resolution, disparities brought back to full)",
-                toString(base.alphaMode).c_str(), (rangeText(runOptions.range) + "; per frame in results.json").c_str());
+                toString(base.alphaMode).c_str(), (rangeText(runOptions) + "; per frame in results.json").c_str());
   markdown += settings;
   for (const FrameGroup& g : groups) {
     if (g.frames.empty()) continue;
@@ -257,11 +252,11 @@ int run(int argc, char** argv) {
                       {"scale", base.scale},
                       {"alpha_mode", toString(base.alphaMode)},
                       {"threads", threads},
-                      {"disparity_range", runOptions.range.mode == DisparityRangeMode::FromLidar ? "lidar" : "fixed"},
-                      {"fixed_num_disparities", runOptions.range.numDisparities},
-                      {"min_confidence", runOptions.minConfidence},
-                      {"sky_filter", runOptions.filters.sky.enabled},
-                      {"outlier_filter", runOptions.filters.outliers.enabled}};
+                      {"disparity_range", toString(config.rangeMode)},
+                      {"fixed_num_disparities", runOptions.fixedNumDisparities},
+                      {"min_confidence", config.minConfidence},
+                      {"sky_filter", config.filters.sky.enabled},
+                      {"outlier_filter", config.filters.outliers.enabled}};
   io::writeFileAtomically(out + "/results.json", json.dump(2));
   std::printf("Results in %s: results.md, results.json, plots/, %s\n", out.c_str(), pictures.empty() ? "" : "pictures/");
   return 0;

@@ -3,6 +3,7 @@
 
 #include "bindings.hpp"
 #include "errors.hpp"
+#include "options.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/version.hpp"
 
@@ -28,4 +29,13 @@ PYBIND11_MODULE(_lidar_sgm, m) {
         return names;
       },
       "backends() -> list of the backends built into this library that can run here (the `backend` parameter)");
+  m.def(
+      "options",
+      [](bool cloud) {
+        return lidar_sgm::python::parameterDefaults(cloud ? lidar_sgm::python::OptionSet::Densify
+                                                          : lidar_sgm::python::OptionSet::Match);
+      },
+      py::arg("cloud") = true,
+      "options(cloud=True) -> dict: every parameter Densifier (cloud=True) or match (cloud=False) takes, with its\n"
+      "default, the same as the command-line tools' (the library's one option table)");
 }

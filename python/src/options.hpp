@@ -1,6 +1,7 @@
 #pragma once
-// Keyword parameters -> a configured Densifier, through the densify tool's own option code
-// (apps/common, apps/densify): the same names (without the dash), defaults, checks and messages.
+// Keyword parameters -> a configured Densifier, through the library's option table
+// (lidar_sgm/pipeline/config_options.hpp): the tools' names (without the dash), defaults, checks
+// and messages, with no command line in between.
 //   Densifier(calib, alpha=0.7, no_lr_check=True)  ==  lidar_sgm_densify -alpha 0.7 -no_lr_check
 
 #include <string>
@@ -22,6 +23,9 @@ void configure(Densifier& densifier, const pybind11::dict& parameters, OptionSet
 
 /// The parameters' help, with their defaults, for the docstrings.
 std::string parametersHelp(OptionSet set);
+
+/// name -> default of every parameter `set` takes (flags False), for lidar_sgm.options().
+pybind11::dict parameterDefaults(OptionSet set);
 
 }  // namespace python
 }  // namespace lidar_sgm

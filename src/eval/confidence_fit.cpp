@@ -162,13 +162,14 @@ std::vector<ConfidenceSample> samplesOf(const ModeRun& run, int firstSeed, int f
     p3.rain = rain;
     p3.width = options.width;
     p3.height = options.height;
-    Parameters base;
-    base.threads = options.threads;
+    DensifierConfig config;
+    config.matcher.threads = options.threads;
     for (const EvalFrame& frame : loadP3(p3)) {
       Method method;
       method.kind = run.kind;
-      const MethodOutput out = runMethod(method, frame, base);
-      collectConfidenceSamples(out.confidenceInputs, out.disparity, frame, step, run.mode, base.paths, samples);
+      const MethodOutput out = runMethod(method, frame, config);
+      collectConfidenceSamples(out.confidenceInputs, out.disparity, frame, step, run.mode, config.matcher.paths,
+                               samples);
     }
   }
   return samples;

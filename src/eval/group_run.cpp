@@ -47,20 +47,20 @@ MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput&
 }
 
 FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, const GroupRunOptions& options,
-                  const Parameters& base) {
+                  const DensifierConfig& config) {
   FrameRun run;
   run.result.dataset = frame.dataset;
   run.result.frame = frame.name;
   for (const Method& m : methods) {
     MethodOutput out =
-        runMethod(m, frame, base, options.backend, options.range, options.filters, options.minConfidence);
+        runMethod(m, frame, config, options.fixedNumDisparities);
     run.result.methods.push_back(score(m, frame, out, true));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
     const Method fused{MethodKind::FusedSgm, alpha};
     MethodOutput out =
-        runMethod(fused, frame, base, options.backend, options.range, options.filters, options.minConfidence);
+        runMethod(fused, frame, config, options.fixedNumDisparities);
     const bool paperAlpha = std::abs(alpha - kPaperAlpha) < 1e-9;
     // Only the table's entry is judged: the curves at every alpha would cost a second sweep.
     run.sweep.push_back(score(fused, frame, out, paperAlpha));
@@ -95,8 +95,8 @@ ProtocolResult runGroup(const FrameGroup& group, const GroupRunOptions& options)
   if (options.alphas.empty()) throw std::invalid_argument("runGroup: the alpha sweep is empty");
   const int threads = std::max(1, options.threads);
   const int workers = std::max(1, std::min(threads, static_cast<int>(group.frames.size())));
-  Parameters base = options.base;
-  base.threads = std::max(1, threads / workers);
+  DensifierConfig config = options.config;
+  config.matcher.threads = std::max(1, threads / workers);
   std::vector<FrameRun> runs(group.frames.size());
   std::atomic<std::size_t> next{0};
   std::mutex printMutex;
@@ -106,7 +106,7 @@ ProtocolResult runGroup(const FrameGroup& group, const GroupRunOptions& options)
     for (std::size_t i = next++; i < group.frames.size(); i = next++) {
       try {
         const auto start = std::chrono::steady_clock::now();
-        runs[i] = runFrame(group.frames[i], group.methods, options, base);
+        runs[i] = runFrame(group.frames[i], group.methods, options, config);
         if (!options.picturesDir.empty()) writeFramePictures(options.picturesDir, group.frames[i], runs[i].disparities);
         runs[i].disparities.clear();  // the pictures are written; the memory is not needed
         std::lock_guard<std::mutex> lock(printMutex);

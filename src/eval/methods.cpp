@@ -72,29 +72,26 @@ namespace {
 
 /// A LiDAR-SGM method as the tools run it: the Densifier on the frame's projected scan, its mode
 /// following the inputs it is given (and the LiDAR-only crop on, its default).
-void runDensifier(const Method& method, const EvalFrame& frame, const Parameters& params, Backend backend,
-                  DisparityRangeMode rangeMode, const OutputFilterOptions& filters, double minConfidence,
-                  MethodOutput& out) {
+void runDensifier(const Method& method, const EvalFrame& frame, const DensifierConfig& config, MethodOutput& out) {
   const bool images = method.kind != MethodKind::LidarSgm;
   const bool lidar = method.kind == MethodKind::LidarSgm || method.kind == MethodKind::FusedSgm ||
                      method.kind == MethodKind::ThreeCamerasLidar;
+  // Every pixel first (the confidence curves need them), then the Densifier's own last step;
+  // the protocols score the disparity, no cloud.
+  DensifierConfig all = config;
+  all.minConfidence = 0.0;
+  all.computeCloud = false;
   Densifier densifier;
-  densifier.setParameters(params);
-  densifier.setBackend(backend);
-  densifier.setDisparityRangeMode(rangeMode);
-  densifier.setOutputFilters(filters);
-  densifier.setComputeCloud(false);  // the protocols score the disparity
+  densifier.setConfig(all);
   if (images) densifier.setStereoPair(io::grayView(frame.left), io::grayView(frame.right));
   if (method.needsThirdCamera()) densifier.setUpCamera(io::grayView(frame.up), frame.upBaselineRatio);
-  // Every pixel first (the confidence curves need them), then the Densifier's own last step.
-  densifier.setMinConfidence(0.0);
   densifier.runProjected(lidar ? &frame.lidar : nullptr);
   out.allDisparity = densifier.disparity();
   out.confidence = densifier.confidence();
   out.disparity = out.allDisparity;
   if (!out.confidence.empty()) {
     Image<std::uint8_t> kept = out.confidence;
-    applyMinConfidence(out.disparity.view(), kept.view(), minConfidence);
+    applyMinConfidence(out.disparity.view(), kept.view(), config.minConfidence);
   }
   if (densifier.matcher() != nullptr) out.confidenceInputs = densifier.matcher()->confidenceInputs();
   out.range = densifier.usedDisparityRange();
@@ -102,8 +99,8 @@ void runDensifier(const Method& method, const EvalFrame& frame, const Parameters
 
 }  // namespace
 
-MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base, Backend backend,
-                       const RangeChoice& range, const OutputFilterOptions& filters, double minConfidence) {
+MethodOutput runMethod(const Method& method, const EvalFrame& frame, const DensifierConfig& config,
+                       int fixedNumDisparities) {
   if (method.needsThirdCamera() && frame.up.empty()) {
     throw std::invalid_argument(displayName(method) + " needs a third camera; frame " + frame.name + " has none");
   }
@@ -122,13 +119,13 @@ MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Param
     case MethodKind::FusedSgm:
     case MethodKind::ThreeCameras:
     case MethodKind::ThreeCamerasLidar: {
-      Parameters params = base;
-      params.numDisparities =
-          numDisparitiesAt(range.numDisparities > 0 ? range.numDisparities : frame.numDisparities, base.scale);
+      DensifierConfig c = config;
+      c.matcher.numDisparities = numDisparitiesAt(fixedNumDisparities > 0 ? fixedNumDisparities : frame.numDisparities,
+                                                  config.matcher.scale);
       // The kinds without a LiDAR weight of their own have it by definition (MethodKind).
-      params.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
-                                        : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
-      runDensifier(method, frame, params, backend, range.mode, filters, minConfidence, out);
+      c.matcher.alpha = static_cast<float>(method.usesAlpha() ? method.alpha
+                                           : method.kind == MethodKind::LidarSgm ? 1.0 : 0.0);
+      runDensifier(method, frame, c, out);
       break;
     }
   }

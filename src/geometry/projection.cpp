@@ -19,19 +19,6 @@ struct Candidate {
   std::size_t source;
 };
 
-void validateOptions(const ProjectionOptions& o) {
-  if (!(o.minDepth > 0.0) || !std::isfinite(o.minDepth)) {
-    throw std::invalid_argument("ProjectionOptions: minDepth must be positive and finite [m]");
-  }
-  if (!(o.maxDepth > o.minDepth)) {
-    throw std::invalid_argument("ProjectionOptions: maxDepth must exceed minDepth");
-  }
-  const OcclusionFilter& f = o.occlusion;
-  if (f.halfWidth < 0 || f.halfHeight < 0 || !(f.minGap >= 0.0) || !(f.relativeGap >= 0.0)) {
-    throw std::invalid_argument(
-        "OcclusionFilter: halfWidth, halfHeight, minGap and relativeGap must be >= 0");
-  }
-}
 
 /// The largest x16 disparity (nearest point) per pixel; kInvalidDisparity where none.
 Image<std::int16_t> nearestPerPixel(int width, int height, const std::vector<Candidate>& candidates) {
@@ -79,6 +66,20 @@ bool isOccluded(const Image<std::int16_t>& nearest, const Candidate& c, const Oc
 
 }  // namespace
 
+void validate(const ProjectionOptions& o) {
+  if (!(o.minDepth > 0.0) || !std::isfinite(o.minDepth)) {
+    throw std::invalid_argument("ProjectionOptions: minDepth must be positive and finite [m]");
+  }
+  if (!(o.maxDepth > o.minDepth)) {
+    throw std::invalid_argument("ProjectionOptions: maxDepth must exceed minDepth");
+  }
+  const OcclusionFilter& f = o.occlusion;
+  if (f.halfWidth < 0 || f.halfHeight < 0 || !(f.minGap >= 0.0) || !(f.relativeGap >= 0.0)) {
+    throw std::invalid_argument(
+        "OcclusionFilter: halfWidth, halfHeight, minGap and relativeGap must be >= 0");
+  }
+}
+
 std::string ProjectionStats::describe() const {
   std::ostringstream s;
   s << input << " in: " << kept << " kept, " << behindCamera << " behind the camera, " << outsideImage
@@ -99,7 +100,7 @@ Image<std::int16_t> ProjectedLidar::sparseDisparity() const {
 ProjectedLidar project(const std::vector<Eigen::Vector3f>& pointsLidar, const StereoCalibration& calibration,
                        const ProjectionOptions& options) {
   calibration.validate();
-  validateOptions(options);
+  validate(options);
 
   ProjectedLidar out;
   out.width = calibration.width;

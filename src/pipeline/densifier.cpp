@@ -146,28 +146,22 @@ geometry::StereoCalibration Densifier::resolveCalibration(bool required, int lid
 void Densifier::prepareMatcher(const std::vector<LidarSample>& samples) {
   // The range depends on the frame: chosen here, after the projection, and validated with the rest.
   usedRange_ = geometry::disparityRangeFromLidar(
-      rangeMode_ == DisparityRangeMode::FromLidar ? samples : std::vector<LidarSample>{}, params_, rangeRule_);
-  usedParams_ = params_;
+      config_.rangeMode == DisparityRangeMode::FromLidar ? samples : std::vector<LidarSample>{}, config_.matcher, config_.rangeRule);
+  usedParams_ = config_.matcher;
   usedParams_.minDisparity = usedRange_.minDisparity;
   usedParams_.numDisparities = usedRange_.numDisparities;
   validate(usedParams_);
   // The matcher keeps its buffers between frames; it is rebuilt only for another backend.
-  if (!matcher_ || matcherBackend_ != backend_) {
-    matcher_ = Matcher::create(backend_, usedParams_);
-    matcherBackend_ = backend_;
+  if (!matcher_ || matcherBackend_ != config_.backend) {
+    matcher_ = Matcher::create(config_.backend, usedParams_);
+    matcherBackend_ = config_.backend;
   } else {
     matcher_->setParameters(usedParams_);
   }
 }
 
 void Densifier::match(const LidarPoints* lidar) {
-  validate(outputFilters_.sky);
-  validate(outputFilters_.outliers);
   const auto start = std::chrono::steady_clock::now();
-  if (minConfidence_ > 0.0 && !params_.confidence) {
-    throw std::invalid_argument("a minimum confidence of " + std::to_string(minConfidence_) +
-                                " needs the confidence: turn parameters().confidence on, or set the minimum to 0");
-  }
   const bool useLidar = lidar != nullptr && !lidar->empty();
   if (!useLidar && !hasStereoPair()) {
     throw std::invalid_argument("nothing to match: give LiDAR points, a stereo pair, or both");
@@ -193,7 +187,7 @@ void Densifier::match(const LidarPoints* lidar) {
     right = right16_.view();
   }
   pairOrientation_ = PairOrientation();
-  if (pairCheck_ && !left.empty()) {
+  if (config_.pairCheck && !left.empty()) {
     pairOrientation_ = useLidar ? pairOrientationFromLidar(left, right, projected_.samples)
                                 : pairOrientationFromStereo(left, right, usedParams_.minDisparity,
                                                             usedParams_.numDisparities);
@@ -201,11 +195,11 @@ void Densifier::match(const LidarPoints* lidar) {
   }
   matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
   lastMode_ = matcher_->lastMode();
-  if (cropToScan_ && lastMode_ == MatchMode::LidarOnly) {
+  if (config_.cropToScan && lastMode_ == MatchMode::LidarOnly) {
     // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
-    geometry::cropToScanRows(disparity_.view(), projected_.samples, params_.lidarCoverageRows, 2);
+    geometry::cropToScanRows(disparity_.view(), projected_.samples, config_.matcher.lidarCoverageRows, 2);
   }
-  filterStats_ = useLidar ? applyOutputFilters(disparity_.view(), projected_.samples, left, outputFilters_)
+  filterStats_ = useLidar ? applyOutputFilters(disparity_.view(), projected_.samples, left, config_.filters)
                           : OutputFilterStats{};
   keepConfidenceOfValidPixels();
   dropUnconfidentPixels();
@@ -227,21 +221,26 @@ void Densifier::keepConfidenceOfValidPixels() {
 
 void Densifier::setMinConfidence(double minConfidence) {
   confidenceThreshold(minConfidence);  // validates
-  minConfidence_ = minConfidence;
+  config_.minConfidence = minConfidence;
+}
+
+void Densifier::setConfig(const DensifierConfig& config) {
+  validate(config);
+  config_ = config;
 }
 
 void Densifier::dropUnconfidentPixels() {
-  if (minConfidence_ <= 0.0 || confidence_.empty()) return;
-  applyMinConfidence(disparity_.view(), confidence_.view(), minConfidence_);
+  if (config_.minConfidence <= 0.0 || confidence_.empty()) return;
+  applyMinConfidence(disparity_.view(), confidence_.view(), config_.minConfidence);
 }
 
 void Densifier::reprojectResult() {
   const auto start = std::chrono::steady_clock::now();
   cloud_ = geometry::DenseCloud();
   depth_ = Image<float>();
-  if (computeCloud_ && haveCalibration_) {
-    geometry::depthImage(disparity_.view(), used_.focalBaseline(), reprojectionOptions_.maxDepth, depth_);
-    cloud_ = geometry::reproject(disparity_.view(), used_, reprojectionOptions_);
+  if (config_.computeCloud && haveCalibration_) {
+    geometry::depthImage(disparity_.view(), used_.focalBaseline(), config_.reprojection.maxDepth, depth_);
+    cloud_ = geometry::reproject(disparity_.view(), used_, config_.reprojection);
   }
   timings_.reproject = millisecondsSince(start);
 }
@@ -249,11 +248,11 @@ void Densifier::reprojectResult() {
 const geometry::DenseCloud& Densifier::run(const std::vector<Eigen::Vector3f>& pointsLidar) {
   used_ = resolveCalibration(true, 0, 0);
   haveCalibration_ = true;
-  validate(params_);
+  validate(config_);  // the whole configuration, in one place (densifier_config.hpp)
   if (pointsLidar.empty()) throw std::invalid_argument("the input cloud is empty");
 
   const auto start = std::chrono::steady_clock::now();
-  projected_ = geometry::project(pointsLidar, used_, projectionOptions_);
+  projected_ = geometry::project(pointsLidar, used_, config_.projection);
   timings_.project = millisecondsSince(start);
   if (projected_.samples.empty()) {
     throw std::invalid_argument("no point of the cloud projects into the image (" + projected_.stats.describe() +
@@ -270,7 +269,7 @@ const geometry::DenseCloud& Densifier::runProjected(const LidarPoints* lidar) {
   const bool useLidar = lidar != nullptr && !lidar->empty();
   used_ = resolveCalibration(false, useLidar ? lidar->width() : 0, useLidar ? lidar->height() : 0);
   haveCalibration_ = calibration_.baseline != 0.0;
-  validate(params_);
+  validate(config_);  // the whole configuration, in one place (densifier_config.hpp)
   const auto start = std::chrono::steady_clock::now();
   projected_ = geometry::ProjectedLidar();
   projected_.width = used_.width;

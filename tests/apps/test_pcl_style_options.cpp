@@ -10,7 +10,7 @@
 
 #include "common/arguments.hpp"
 #include "common/pcl_style_options.hpp"
-#include "common/sgm_options.hpp"
+#include "common/config_arguments.hpp"
 
 namespace lidar_sgm {
 namespace apps {
@@ -115,17 +115,28 @@ TEST(ArgumentsOnCli11, BadLinesAreRejectedWithTheProblemNamed) {
   }
 }
 
-TEST(SgmOptions, AlphaModeIsReadAndABadOneIsNamed) {
-  const auto parseSgm = [](const Strings& line) {
+TEST(ConfigArguments, TheCommandLineGivesTheTablesConfiguration) {
+  const auto parseConfig = [](const Strings& line, OptionScope scope) {
     std::vector<const char*> argv{"tool"};
     for (const std::string& s : line) argv.push_back(s.c_str());
-    return Arguments(static_cast<int>(argv.size()), argv.data(), sgmValueOptions(), sgmFlagOptions());
+    const Arguments args(static_cast<int>(argv.size()), argv.data(), joined(configValueOptions(scope), {"out"}),
+                         configFlagOptions(scope));
+    return configFrom(args, scope);
   };
-  EXPECT_EQ(parametersFrom(parseSgm({})).alphaMode, AlphaMode::Fixed);
-  EXPECT_EQ(parametersFrom(parseSgm({"-alpha_mode", "adaptive"})).alphaMode, AlphaMode::Adaptive);
-  EXPECT_EQ(parametersFrom(parseSgm({"--alpha_mode=fixed"})).alphaMode, AlphaMode::Fixed);
+  EXPECT_EQ(parseConfig({}, OptionScope::Cloud).matcher.alphaMode, AlphaMode::Fixed);
+  EXPECT_EQ(parseConfig({"-alpha_mode", "adaptive"}, OptionScope::Cloud).matcher.alphaMode, AlphaMode::Adaptive);
+  EXPECT_EQ(parseConfig({"--alpha_mode=fixed"}, OptionScope::Disparity).matcher.alphaMode, AlphaMode::Fixed);
+  // A tool's own options are the tool's; the table's flags and values are read whole.
+  const DensifierConfig c =
+      parseConfig({"-out", "x", "-no_lr_check", "-min_disparity", "-16", "-stride", "2"}, OptionScope::Cloud);
+  EXPECT_FALSE(c.matcher.lrCheck);
+  EXPECT_EQ(c.matcher.minDisparity, -16);
+  EXPECT_EQ(c.rangeMode, DisparityRangeMode::Fixed);
+  EXPECT_EQ(c.reprojection.stride, 2);
+  // The cloud's options are not the disparity tool's.
+  EXPECT_THROW(parseConfig({"-stride", "2"}, OptionScope::Disparity), std::invalid_argument);
   try {
-    parametersFrom(parseSgm({"-alpha_mode", "sometimes"}));
+    parseConfig({"-alpha_mode", "sometimes"}, OptionScope::Cloud);
     ADD_FAILURE() << "'sometimes' was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "option -alpha_mode: 'sometimes' must be fixed or adaptive");

@@ -17,7 +17,7 @@ pcl::PointCloud<pcl::PointXYZRGB> densify(const std::string& dir, const std::str
   sgm.setInputCloud(scan);                    // setIndices() is honoured
   sgm.setCalibration(lidar_sgm::io::readCalibration(dir + "/calib/" + name + ".txt"));
   lidar_sgm::setStereoPair(sgm, left, right); // cv::Mat; omit -> LiDAR-only SGM
-  sgm.setAlpha(0.7f);                         // LiDAR weight (Eq. 5); every Parameters field has a setter
+  sgm.setAlpha(0.7f);                         // LiDAR weight (Eq. 5); setConfig() sets everything
   sgm.setNumberOfThreads(0);                  // 0 = all hardware threads; never changes the result
   sgm.setKeepOrganized(false);                // setOutputFrame, setMaxDepth, setStride, setColorImage
   pcl::PointCloud<pcl::PointXYZRGB> dense;

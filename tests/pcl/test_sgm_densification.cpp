@@ -370,7 +370,11 @@ TEST(SGMDensification, BadPreconditionsGiveAnEmptyOutputAndANamedError) {
   }, "baseline");
   expectFailure([](Sgm& s) { s.setAlpha(1.5f); }, "alpha");
   expectFailure([](Sgm& s) { s.setMaxDepth(-1.0); }, "maxDepth");
-  expectFailure([](Sgm& s) { s.setPaths(3); }, "paths");
+  expectFailure([](Sgm& s) {
+    lidar_sgm::Parameters p;
+    p.paths = 3;
+    s.setParameters(p);
+  }, "paths");
   expectFailure([](Sgm& s) { s.setScale(0.7f); }, "scale = 0.7");
   expectFailure([](Sgm& s) { s.setNumberOfThreads(-1); }, "threads = -1");
   expectFailure([](Sgm& s) {

@@ -1,9 +1,9 @@
-// Every setter of SGMDensification writes its own field of the Densifier's options (read back
-// through getParameters() & co., which return the Densifier's), and nothing else; and every
-// field has a setter (the field counts below fail when a field is added).
+// SGMDensification's configuration goes in and out whole (setConfig / getConfig), each
+// convenience setter writes its own field of it and nothing else, and a frame runs with it.
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -36,11 +36,13 @@ constexpr std::size_t fieldCount() {
   }
 }
 
-// A new field needs a setter/getter pair in SGMDensification and a line in the test below.
-static_assert(fieldCount<Parameters>() == 21, "Parameters changed: add the setter and test it here");
-static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: add the setter");
-static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: add the setter");
-static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: add the setter");
+// A new field of the configuration is compared below (and gets an entry in the option table,
+// config_options.cpp, when a front end sets it).
+static_assert(fieldCount<DensifierConfig>() == 11, "DensifierConfig changed: compare the new field here");
+static_assert(fieldCount<Parameters>() == 21, "Parameters changed: compare the new field here");
+static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: compare it here");
+static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: compare it here");
+static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: compare it here");
 
 void expectEqual(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.minDisparity, b.minDisparity);
@@ -66,22 +68,36 @@ void expectEqual(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.confidence, b.confidence);
 }
 
-void expectEqual(const geometry::ProjectionOptions& a, const geometry::ProjectionOptions& b) {
-  EXPECT_EQ(a.minDepth, b.minDepth);
-  EXPECT_EQ(a.maxDepth, b.maxDepth);
-  EXPECT_EQ(a.occlusion.enabled, b.occlusion.enabled);
-  EXPECT_EQ(a.occlusion.halfWidth, b.occlusion.halfWidth);
-  EXPECT_EQ(a.occlusion.halfHeight, b.occlusion.halfHeight);
-  EXPECT_EQ(a.occlusion.minGap, b.occlusion.minGap);
-  EXPECT_EQ(a.occlusion.relativeGap, b.occlusion.relativeGap);
-  EXPECT_EQ(a.occlusion.requireEnclosed, b.occlusion.requireEnclosed);
-}
-
-void expectEqual(const geometry::ReprojectionOptions& a, const geometry::ReprojectionOptions& b) {
-  EXPECT_EQ(a.frame, b.frame);
-  EXPECT_EQ(a.maxDepth, b.maxDepth);
-  EXPECT_EQ(a.stride, b.stride);
-  EXPECT_EQ(a.keepOrganized, b.keepOrganized);
+void expectEqual(const DensifierConfig& a, const DensifierConfig& b) {
+  expectEqual(a.matcher, b.matcher);
+  EXPECT_EQ(a.backend, b.backend);
+  EXPECT_EQ(a.rangeMode, b.rangeMode);
+  EXPECT_EQ(a.rangeRule.ignoredPoints, b.rangeRule.ignoredPoints);
+  EXPECT_EQ(a.rangeRule.ignoredFraction, b.rangeRule.ignoredFraction);
+  EXPECT_EQ(a.rangeRule.marginPx, b.rangeRule.marginPx);
+  EXPECT_EQ(a.rangeRule.marginFraction, b.rangeRule.marginFraction);
+  EXPECT_EQ(a.rangeRule.minNumDisparities, b.rangeRule.minNumDisparities);
+  EXPECT_EQ(a.rangeRule.maxNumDisparities, b.rangeRule.maxNumDisparities);
+  EXPECT_EQ(a.projection.minDepth, b.projection.minDepth);
+  EXPECT_EQ(a.projection.maxDepth, b.projection.maxDepth);
+  EXPECT_EQ(a.projection.occlusion.enabled, b.projection.occlusion.enabled);
+  EXPECT_EQ(a.projection.occlusion.halfWidth, b.projection.occlusion.halfWidth);
+  EXPECT_EQ(a.projection.occlusion.halfHeight, b.projection.occlusion.halfHeight);
+  EXPECT_EQ(a.projection.occlusion.minGap, b.projection.occlusion.minGap);
+  EXPECT_EQ(a.projection.occlusion.relativeGap, b.projection.occlusion.relativeGap);
+  EXPECT_EQ(a.projection.occlusion.requireEnclosed, b.projection.occlusion.requireEnclosed);
+  EXPECT_EQ(a.reprojection.frame, b.reprojection.frame);
+  EXPECT_EQ(a.reprojection.maxDepth, b.reprojection.maxDepth);
+  EXPECT_EQ(a.reprojection.stride, b.reprojection.stride);
+  EXPECT_EQ(a.reprojection.keepOrganized, b.reprojection.keepOrganized);
+  EXPECT_EQ(a.cropToScan, b.cropToScan);
+  EXPECT_EQ(a.minConfidence, b.minConfidence);
+  EXPECT_EQ(a.filters.sky.enabled, b.filters.sky.enabled);
+  EXPECT_EQ(a.filters.sky.textureThreshold, b.filters.sky.textureThreshold);
+  EXPECT_EQ(a.filters.outliers.enabled, b.filters.outliers.enabled);
+  EXPECT_EQ(a.filters.outliers.minNeighbours, b.filters.outliers.minNeighbours);
+  EXPECT_EQ(a.pairCheck, b.pairCheck);
+  EXPECT_EQ(a.computeCloud, b.computeCloud);
 }
 
 using Sgm = SGMDensification<pcl::PointXYZI, pcl::PointXYZRGB>;
@@ -95,123 +111,80 @@ void check(const char* name, Sgm& sgm, Set set, Get get, Value value) {
   EXPECT_EQ((sgm.*get)(), value);
 }
 
-TEST(SGMDensificationParameters, EverySetterReachesTheDensifiersOwnField) {
+TEST(SGMDensificationParameters, TheConfigurationGoesInAndComesOutWhole) {
   Sgm sgm;
-  Parameters p;  // defaults, as the class starts with
-  expectEqual(sgm.getParameters(), p);
+  expectEqual(sgm.getConfig(), DensifierConfig());  // the shipped default
+  DensifierConfig c;
+  c.matcher.alpha = 0.25f;
+  c.matcher.censusType = CensusType::CenterSymmetric9x7;
+  c.backend = Backend::CpuRef;
+  c.rangeMode = DisparityRangeMode::Fixed;
+  c.rangeRule.maxNumDisparities = 192;
+  c.projection.occlusion.halfWidth = 5;
+  c.reprojection.stride = 2;
+  c.cropToScan = false;
+  c.minConfidence = 0.25;
+  c.filters.sky.enabled = false;
+  c.pairCheck = false;
+  sgm.setConfig(c);
+  expectEqual(sgm.getConfig(), c);
+  // An invalid configuration is refused whole, naming the setting; the object keeps its own.
+  DensifierConfig bad = c;
+  bad.matcher.paths = 3;
+  EXPECT_THROW(sgm.setConfig(bad), std::invalid_argument);
+  expectEqual(sgm.getConfig(), c);
+  bad = c;
+  bad.filters.outliers.minNeighbours = 99;
+  try {
+    sgm.setConfig(bad);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("minNeighbours"), std::string::npos) << e.what();
+  }
+  // The option table reads the same configuration from names, as the tools do.
+  sgm.setConfig(configFromOptions({{"alpha", "0.25"}, {"census", "cs9x7"}}, {"no_sky_filter"}));
+  EXPECT_EQ(sgm.getAlpha(), 0.25f);
+  EXPECT_FALSE(sgm.getConfig().filters.sky.enabled);
+}
+
+TEST(SGMDensificationParameters, EachConvenienceSetterWritesItsOwnField) {
+  Sgm sgm;
+  DensifierConfig c;
   // Every value differs from the default, so a setter that writes nothing fails too.
-  p.minDisparity = -8;
-  check("minDisparity", sgm, &Sgm::setMinDisparity, &Sgm::getMinDisparity, p.minDisparity);
-  p.numDisparities = 96;
-  check("numDisparities", sgm, &Sgm::setNumDisparities, &Sgm::getNumDisparities, p.numDisparities);
-  p.P1 = 11;
-  check("P1", sgm, &Sgm::setP1, &Sgm::getP1, p.P1);
-  p.P2 = 123;
-  check("P2", sgm, &Sgm::setP2, &Sgm::getP2, p.P2);
+  c.matcher.minDisparity = -8;
+  check("minDisparity", sgm, &Sgm::setMinDisparity, &Sgm::getMinDisparity, c.matcher.minDisparity);
+  c.matcher.numDisparities = 96;
+  check("numDisparities", sgm, &Sgm::setNumDisparities, &Sgm::getNumDisparities, c.matcher.numDisparities);
+  c.matcher.P1 = 11;
+  check("P1", sgm, &Sgm::setP1, &Sgm::getP1, c.matcher.P1);
+  c.matcher.P2 = 123;
+  check("P2", sgm, &Sgm::setP2, &Sgm::getP2, c.matcher.P2);
+  c.matcher.alpha = 0.25f;
+  check("alpha", sgm, &Sgm::setAlpha, &Sgm::getAlpha, c.matcher.alpha);
+  c.matcher.scale = 0.5f;
+  check("scale", sgm, &Sgm::setScale, &Sgm::getScale, c.matcher.scale);
+  c.matcher.threads = 3;
+  check("threads", sgm, &Sgm::setNumberOfThreads, &Sgm::getNumberOfThreads, c.matcher.threads);
+  c.backend = Backend::CpuRef;
+  check("backend", sgm, &Sgm::setBackend, &Sgm::getBackend, c.backend);
+  c.rangeMode = DisparityRangeMode::Fixed;
+  check("rangeMode", sgm, &Sgm::setDisparityRangeMode, &Sgm::getDisparityRangeMode, c.rangeMode);
+  c.minConfidence = 0.5;
+  check("minConfidence", sgm, &Sgm::setMinConfidence, &Sgm::getMinConfidence, c.minConfidence);
+  c.reprojection.frame = geometry::OutputFrame::Camera;
+  check("frame", sgm, &Sgm::setOutputFrame, &Sgm::getOutputFrame, c.reprojection.frame);
+  c.reprojection.maxDepth = 33.0;
+  check("maxDepth (output)", sgm, &Sgm::setMaxDepth, &Sgm::getMaxDepth, c.reprojection.maxDepth);
+  c.reprojection.stride = 2;
+  check("stride", sgm, &Sgm::setStride, &Sgm::getStride, c.reprojection.stride);
+  c.reprojection.keepOrganized = true;
+  check("keepOrganized", sgm, &Sgm::setKeepOrganized, &Sgm::getKeepOrganized, c.reprojection.keepOrganized);
+  expectEqual(sgm.getConfig(), c);
+  Parameters p = c.matcher;
   p.paths = 8;
-  check("paths", sgm, &Sgm::setPaths, &Sgm::getPaths, p.paths);
-  p.alpha = 0.25f;
-  check("alpha", sgm, &Sgm::setAlpha, &Sgm::getAlpha, p.alpha);
-  p.alphaMode = AlphaMode::Adaptive;
-  check("alphaMode", sgm, &Sgm::setAlphaMode, &Sgm::getAlphaMode, p.alphaMode);
-  p.sigma = 3.5f;
-  check("sigma", sgm, &Sgm::setSigma, &Sgm::getSigma, p.sigma);
-  p.lidarCostCap = 40;
-  check("lidarCostCap", sgm, &Sgm::setLidarCostCap, &Sgm::getLidarCostCap, p.lidarCostCap);
-  p.stereoCostWithoutLidar = !p.stereoCostWithoutLidar;
-  check("stereoCostWithoutLidar", sgm, &Sgm::setStereoCostWithoutLidar, &Sgm::getStereoCostWithoutLidar,
-        p.stereoCostWithoutLidar);
-  p.uniquenessRatio = 15;
-  check("uniquenessRatio", sgm, &Sgm::setUniquenessRatio, &Sgm::getUniquenessRatio, p.uniquenessRatio);
-  p.lrCheck = !p.lrCheck;
-  check("lrCheck", sgm, &Sgm::setLRCheck, &Sgm::getLRCheck, p.lrCheck);
-  p.lrCheckWithLidar = !p.lrCheckWithLidar;
-  check("lrCheckWithLidar", sgm, &Sgm::setLRCheckWithLidar, &Sgm::getLRCheckWithLidar, p.lrCheckWithLidar);
-  p.disp12MaxDiff = 3;
-  check("disp12MaxDiff", sgm, &Sgm::setDisp12MaxDiff, &Sgm::getDisp12MaxDiff, p.disp12MaxDiff);
-  p.lidarCoverageRows = 9;
-  check("lidarCoverageRows", sgm, &Sgm::setLidarCoverageRows, &Sgm::getLidarCoverageRows, p.lidarCoverageRows);
-  p.medianSize = 3;
-  check("medianSize", sgm, &Sgm::setMedianSize, &Sgm::getMedianSize, p.medianSize);
-  p.subpixel = !p.subpixel;
-  check("subpixel", sgm, &Sgm::setSubpixel, &Sgm::getSubpixel, p.subpixel);
-  p.censusType = CensusType::CenterSymmetric9x7;
-  check("censusType", sgm, &Sgm::setCensusType, &Sgm::getCensusType, p.censusType);
-  p.scale = 0.5f;
-  check("scale", sgm, &Sgm::setScale, &Sgm::getScale, p.scale);
-  p.threads = 3;
-  check("threads", sgm, &Sgm::setNumberOfThreads, &Sgm::getNumberOfThreads, p.threads);
-  p.confidence = !p.confidence;
-  check("confidence", sgm, &Sgm::setComputeConfidence, &Sgm::getComputeConfidence, p.confidence);
-  expectEqual(sgm.getParameters(), p);
-
-  geometry::ProjectionOptions o;
-  expectEqual(sgm.getProjectionOptions(), o);
-  o.minDepth = 1.25;
-  check("minDepth", sgm, &Sgm::setMinPointDepth, &Sgm::getMinPointDepth, o.minDepth);
-  o.maxDepth = 70.0;
-  check("maxDepth (projection)", sgm, &Sgm::setMaxPointDepth, &Sgm::getMaxPointDepth, o.maxDepth);
-  o.occlusion.enabled = !o.occlusion.enabled;
-  check("occlusion.enabled", sgm, &Sgm::setOcclusionFilter, &Sgm::getOcclusionFilter, o.occlusion.enabled);
-  o.occlusion.halfWidth = 5;
-  check("occlusion.halfWidth", sgm, &Sgm::setOcclusionHalfWidth, &Sgm::getOcclusionHalfWidth, o.occlusion.halfWidth);
-  o.occlusion.halfHeight = 7;
-  check("occlusion.halfHeight", sgm, &Sgm::setOcclusionHalfHeight, &Sgm::getOcclusionHalfHeight,
-        o.occlusion.halfHeight);
-  o.occlusion.minGap = 3.5;
-  check("occlusion.minGap", sgm, &Sgm::setOcclusionMinGap, &Sgm::getOcclusionMinGap, o.occlusion.minGap);
-  o.occlusion.relativeGap = 0.3;
-  check("occlusion.relativeGap", sgm, &Sgm::setOcclusionRelativeGap, &Sgm::getOcclusionRelativeGap,
-        o.occlusion.relativeGap);
-  o.occlusion.requireEnclosed = !o.occlusion.requireEnclosed;
-  check("occlusion.requireEnclosed", sgm, &Sgm::setOcclusionRequireEnclosed, &Sgm::getOcclusionRequireEnclosed,
-        o.occlusion.requireEnclosed);
-  expectEqual(sgm.getProjectionOptions(), o);
-
-  geometry::ReprojectionOptions r;
-  expectEqual(sgm.getReprojectionOptions(), r);
-  r.frame = geometry::OutputFrame::Camera;
-  check("frame", sgm, &Sgm::setOutputFrame, &Sgm::getOutputFrame, r.frame);
-  r.maxDepth = 33.0;
-  check("maxDepth (output)", sgm, &Sgm::setMaxDepth, &Sgm::getMaxDepth, r.maxDepth);
-  r.stride = 2;
-  check("stride", sgm, &Sgm::setStride, &Sgm::getStride, r.stride);
-  r.keepOrganized = !r.keepOrganized;
-  check("keepOrganized", sgm, &Sgm::setKeepOrganized, &Sgm::getKeepOrganized, r.keepOrganized);
-  expectEqual(sgm.getReprojectionOptions(), r);
-  // The parameters were not touched by the option setters.
-  expectEqual(sgm.getParameters(), p);
-
-  EXPECT_EQ(sgm.getBackend(), Backend::Auto);
-  sgm.setBackend(Backend::CpuRef);
-  EXPECT_EQ(sgm.getBackend(), Backend::CpuRef);
-  EXPECT_TRUE(sgm.getCropToScan());
-  sgm.setCropToScan(false);
-  EXPECT_FALSE(sgm.getCropToScan());
-  EXPECT_EQ(sgm.getDisparityRangeMode(), DisparityRangeMode::FromLidar);
-  sgm.setDisparityRangeMode(DisparityRangeMode::Fixed);
-  EXPECT_EQ(sgm.getDisparityRangeMode(), DisparityRangeMode::Fixed);
-  geometry::DisparityRangeRule rule;
-  rule.maxNumDisparities = 192;
-  sgm.setDisparityRangeRule(rule);
-  EXPECT_EQ(sgm.getDisparityRangeRule().maxNumDisparities, 192);
-  expectEqual(sgm.getParameters(), p);
-
-  // The output filters: both on by default, each switch touches only its own filter.
-  EXPECT_TRUE(sgm.getSkyFilter());
-  EXPECT_TRUE(sgm.getOutlierFilter());
-  sgm.setSkyFilter(false);
-  EXPECT_FALSE(sgm.getSkyFilter());
-  EXPECT_TRUE(sgm.getOutlierFilter());
-  sgm.setOutlierFilter(false);
-  EXPECT_FALSE(sgm.getOutlierFilter());
-  OutputFilterOptions filters;
-  filters.outliers.minNeighbours = 7;
-  filters.sky.textureThreshold = 2.5;
-  sgm.setOutputFilters(filters);
-  EXPECT_TRUE(sgm.getSkyFilter());
-  EXPECT_EQ(sgm.getOutputFilters().outliers.minNeighbours, 7);
-  EXPECT_EQ(sgm.getOutputFilters().sky.textureThreshold, 2.5);
+  sgm.setParameters(p);
+  c.matcher = p;
+  expectEqual(sgm.getConfig(), c);
 }
 
 TEST(SGMDensificationParameters, TheFrameRunsWithWhatTheSettersSaid) {
@@ -222,13 +195,16 @@ TEST(SGMDensificationParameters, TheFrameRunsWithWhatTheSettersSaid) {
   sgm.setCalibration(c);
   sgm.setNumDisparities(64);
   sgm.setBackend(Backend::CpuRef);
-  sgm.setMaxPointDepth(3.0);  // the whole 4 m wall is out of range
+  DensifierConfig near = sgm.getConfig();
+  near.projection.maxDepth = 3.0;  // the whole 4 m wall is out of range
+  sgm.setConfig(near);
   pcl::PointCloud<pcl::PointXYZRGB> dense;
   sgm.filter(dense);
   EXPECT_TRUE(dense.empty());
   EXPECT_NE(sgm.getLastError().find("out of range"), std::string::npos) << sgm.getLastError();
   EXPECT_TRUE(sgm.getProjectedLidar().samples.empty());
-  sgm.setMaxPointDepth(10.0);
+  near.projection.maxDepth = 10.0;
+  sgm.setConfig(near);
   sgm.setMinDisparity(32);  // the wall's 25 px are below this range...
   const auto wallPixels = [&sgm] {
     std::size_t valid = 0;

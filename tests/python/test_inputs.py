@@ -157,3 +157,11 @@ def test_match(left, right):
             nothing()
     with pytest.raises(ValueError, match="unknown parameter 'frame'"):
         lidar_sgm.match(left, right, frame="camera")
+
+
+def test_options_are_the_tools_with_their_defaults():
+    cloud = lidar_sgm.options()
+    assert cloud["alpha"] == pytest.approx(0.7)
+    assert cloud["census"] == "9x7" and cloud["no_lr_check"] is False and cloud["max_depth"] == 80.0
+    match = lidar_sgm.options(cloud=False)
+    assert "frame" in cloud and "frame" not in match and set(match) < set(cloud)

@@ -29,13 +29,12 @@ struct GroupRunOptions {
   std::vector<double> alphas;  ///< the sweep of the fused method (sweepAlphas); should hold kPaperAlpha
   int threads = 1;             ///< in all: frames in parallel, each frame's matcher an equal share of the rest
   std::string picturesDir;     ///< per-frame pictures go here; empty: none
-  Parameters base;             ///< the LiDAR-SGM methods' parameters (alpha and numDisparities are set per run)
-  Backend backend = Backend::Auto;
-  /// The LiDAR-SGM methods' search range: from each frame's LiDAR (the tools' default) or fixed:
-  /// the frame's numDisparities (the protocol's, from its GT: docs/EVALUATION.md) or a given one.
-  RangeChoice range;
-  OutputFilterOptions filters;  ///< the Densifier's sky and outlier filters for the LiDAR-SGM methods
-  double minConfidence = kDefaultMinConfidence;  ///< the Densifier's minimum confidence (core/confidence.hpp)
+  /// The LiDAR-SGM methods' configuration (alpha, numDisparities and threads are set per run):
+  /// the tools' default unless the evaluation's options say otherwise.
+  DensifierConfig config;
+  /// The fixed search range's numDisparities (config.rangeMode Fixed, or a frame without
+  /// LiDAR); 0 = the frame's (the protocol's, from its GT: docs/EVALUATION.md).
+  int fixedNumDisparities = 0;
 };
 
 /// Runs every method of `group` and the fused method at every alpha on each frame, in parallel

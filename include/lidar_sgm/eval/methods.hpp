@@ -10,6 +10,7 @@
 #include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/matcher.hpp"
+#include "lidar_sgm/pipeline/densifier_config.hpp"
 #include "lidar_sgm/core/parameters.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
 #include "lidar_sgm/eval/eval_frame.hpp"
@@ -68,25 +69,15 @@ struct MethodOutput {
   geometry::DisparityRange range{0, 0};
 };
 
-/// Where the LiDAR-SGM methods' search range comes from.
-struct RangeChoice {
-  /// FromLidar (the tools' default): from the frame's LiDAR for the methods that have one;
-  /// Fixed, and the methods without LiDAR: the fixed range below.
-  DisparityRangeMode mode = DisparityRangeMode::FromLidar;
-  /// The fixed numDisparities; 0 = the frame's (EvalFrame::numDisparities).
-  int numDisparities = 0;
-};
-
 /// Runs `method` on `frame`: the LiDAR-SGM methods through a Densifier (runProjected on the
-/// frame's LiDAR, no cloud) with `base` (the tools' SGM options, scale and threads included) on
-/// `backend`, alpha the method's and the search range by `range` (the fixed one rounded up to a
-/// multiple of 32 at scale 0.5, which needs one). The baselines ignore `base` and `range` (OpenCV
-/// SGBM searches the frame's numDisparities). Throws std::invalid_argument when the frame lacks
-/// what the method needs. `filters` and `minConfidence`: the Densifier's output filters and
-/// minimum confidence (its defaults, as the tools ship them).
-MethodOutput runMethod(const Method& method, const EvalFrame& frame, const Parameters& base = {},
-                       Backend backend = Backend::Auto, const RangeChoice& range = {},
-                       const OutputFilterOptions& filters = {}, double minConfidence = kDefaultMinConfidence);
+/// frame's LiDAR, no cloud) configured with `config` (what the tools ship by default; the
+/// evaluation tool reads it from the same options), alpha the method's. The search range follows
+/// config.rangeMode; its fixed part is `fixedNumDisparities`, or the frame's
+/// (EvalFrame::numDisparities) when 0, rounded up to a multiple of 32 at scale 0.5. The baselines
+/// ignore `config` (OpenCV SGBM searches the frame's numDisparities). Throws
+/// std::invalid_argument when the frame lacks what the method needs.
+MethodOutput runMethod(const Method& method, const EvalFrame& frame, const DensifierConfig& config = {},
+                       int fixedNumDisparities = 0);
 
 /// The search range of a frame whose protocol chose `frameNumDisparities`, at `scale`: the
 /// same at scale 1; at 0.5 rounded up to a multiple of 32 (the half-scale search range must be

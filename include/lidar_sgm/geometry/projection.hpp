@@ -74,6 +74,10 @@ struct ProjectedLidar {
   Image<std::int16_t> sparseDisparity() const;
 };
 
+/// Throws std::invalid_argument naming the field when `options` are impossible (minDepth not
+/// positive, maxDepth not above it, negative occlusion window or gaps).
+void validate(const ProjectionOptions& options);
+
 /// Projects `pointsLidar` (LiDAR frame, metres) into the left rectified image:
 /// p_cam = T_cam_lidar * p, (u, v) = round(K * p_cam / z), d = f*b/z (Eq. 3) in x16.
 /// `calibration` is validated first (std::invalid_argument).

@@ -13,6 +13,7 @@
 #include <pcl/point_types.h>
 
 #include "lidar_sgm/pcl/point_types.hpp"
+#include "lidar_sgm/pipeline/config_options.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 
 /// The point types src/pcl/sgm_densification.cpp instantiates (Boost.PP sequences, as PCL's own):
@@ -52,7 +53,7 @@ namespace lidar_sgm {
 ///   sgm.setInputCloud(scan);                    // setIndices() is honoured
 ///   sgm.setCalibration(lidar_sgm::io::readCalibration(dir + "/calib/" + name + ".txt"));
 ///   lidar_sgm::setStereoPair(sgm, left, right); // cv::Mat; omit -> LiDAR-only SGM
-///   sgm.setAlpha(0.7f);                         // LiDAR weight (Eq. 5); every Parameters field has a setter
+///   sgm.setAlpha(0.7f);                         // LiDAR weight (Eq. 5); setConfig() sets everything
 ///   sgm.setNumberOfThreads(0);                  // 0 = all hardware threads; never changes the result
 ///   sgm.setKeepOrganized(false);                // setOutputFrame, setMaxDepth, setStride, setColorImage
 ///   pcl::PointCloud<pcl::PointXYZRGB> dense;
@@ -121,54 +122,41 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// colors a LiDAR-only result.
   void setColorImage(const ImageCloud& image);
 
-  // ---- matcher parameters: lidar_sgm::Parameters (meaning and ranges there); checked in filter()
+  // ---- the configuration: everything the tools and Python set (pipeline/densifier_config.hpp)
 
+  /// The whole configuration at once: matcher parameters, backend, search range, projection,
+  /// filters, minimum confidence and the output cloud's frame, depth, stride and organisation.
+  /// config_options.hpp reads one from options by name, as the command-line tools do:
+  /// `sgm.setConfig(lidar_sgm::configFromOptions({{"alpha", "0.5"}}, {"no_lr_check"}))`.
+  /// Throws std::invalid_argument naming the setting when `config` is invalid (the object keeps
+  /// the configuration it had).
+  void setConfig(const DensifierConfig& config) { densifier_.setConfig(config); }
+  const DensifierConfig& getConfig() const { return densifier_.config(); }
+
+  // Convenience setters for what PCL and OpenCV users set most (each changes one field of the
+  // configuration; everything else goes through setConfig). Checked in filter().
+
+  /// Every matcher parameter at once (lidar_sgm::Parameters: meanings and ranges there).
+  void setParameters(const Parameters& params) { densifier_.setParameters(params); }
+  const Parameters& getParameters() const { return densifier_.parameters(); }
+  /// LiDAR weight of the fused cost (Eq. 5), in [0, 1].
+  void setAlpha(float alpha) { densifier_.parameters().alpha = alpha; }
+  float getAlpha() const { return densifier_.parameters().alpha; }
+  /// The penalties of Eq. 1, as OpenCV's StereoSGBM names them.
+  void setP1(int p1) { densifier_.parameters().P1 = p1; }
+  int getP1() const { return densifier_.parameters().P1; }
+  void setP2(int p2) { densifier_.parameters().P2 = p2; }
+  int getP2() const { return densifier_.parameters().P2; }
   /// The search range: from each frame's LiDAR (DisparityRangeMode::FromLidar, the default:
   /// geometry::disparityRangeFromLidar) or the fixed [minDisparity, minDisparity +
   /// numDisparities) below (Fixed; the paper's [0, 128)). In FromLidar mode the fixed range is
   /// used only for a frame with no point in the image. getUsedDisparityRange() tells which.
   void setDisparityRangeMode(DisparityRangeMode mode) { densifier_.setDisparityRangeMode(mode); }
   DisparityRangeMode getDisparityRangeMode() const { return densifier_.disparityRangeMode(); }
-  /// The numbers of the FromLidar rule (margin, strays ignored, floor and cap).
-  void setDisparityRangeRule(const geometry::DisparityRangeRule& rule) { densifier_.setDisparityRangeRule(rule); }
-  const geometry::DisparityRangeRule& getDisparityRangeRule() const { return densifier_.disparityRangeRule(); }
-  /// The fixed range (see setDisparityRangeMode).
   void setMinDisparity(int d) { densifier_.parameters().minDisparity = d; }
   int getMinDisparity() const { return densifier_.parameters().minDisparity; }
   void setNumDisparities(int n) { densifier_.parameters().numDisparities = n; }
   int getNumDisparities() const { return densifier_.parameters().numDisparities; }
-  void setP1(int p1) { densifier_.parameters().P1 = p1; }
-  int getP1() const { return densifier_.parameters().P1; }
-  void setP2(int p2) { densifier_.parameters().P2 = p2; }
-  int getP2() const { return densifier_.parameters().P2; }
-  void setPaths(int paths) { densifier_.parameters().paths = paths; }
-  int getPaths() const { return densifier_.parameters().paths; }
-  void setAlpha(float alpha) { densifier_.parameters().alpha = alpha; }
-  float getAlpha() const { return densifier_.parameters().alpha; }
-  void setAlphaMode(AlphaMode mode) { densifier_.parameters().alphaMode = mode; }
-  AlphaMode getAlphaMode() const { return densifier_.parameters().alphaMode; }
-  void setSigma(float sigma) { densifier_.parameters().sigma = sigma; }
-  float getSigma() const { return densifier_.parameters().sigma; }
-  void setLidarCostCap(int cap) { densifier_.parameters().lidarCostCap = cap; }
-  int getLidarCostCap() const { return densifier_.parameters().lidarCostCap; }
-  void setStereoCostWithoutLidar(bool full) { densifier_.parameters().stereoCostWithoutLidar = full; }
-  bool getStereoCostWithoutLidar() const { return densifier_.parameters().stereoCostWithoutLidar; }
-  void setUniquenessRatio(int percent) { densifier_.parameters().uniquenessRatio = percent; }
-  int getUniquenessRatio() const { return densifier_.parameters().uniquenessRatio; }
-  void setLRCheck(bool check) { densifier_.parameters().lrCheck = check; }
-  bool getLRCheck() const { return densifier_.parameters().lrCheck; }
-  void setLRCheckWithLidar(bool check) { densifier_.parameters().lrCheckWithLidar = check; }
-  bool getLRCheckWithLidar() const { return densifier_.parameters().lrCheckWithLidar; }
-  void setDisp12MaxDiff(int pixels) { densifier_.parameters().disp12MaxDiff = pixels; }
-  int getDisp12MaxDiff() const { return densifier_.parameters().disp12MaxDiff; }
-  void setLidarCoverageRows(int rows) { densifier_.parameters().lidarCoverageRows = rows; }
-  int getLidarCoverageRows() const { return densifier_.parameters().lidarCoverageRows; }
-  void setMedianSize(int size) { densifier_.parameters().medianSize = size; }
-  int getMedianSize() const { return densifier_.parameters().medianSize; }
-  void setSubpixel(bool subpixel) { densifier_.parameters().subpixel = subpixel; }
-  bool getSubpixel() const { return densifier_.parameters().subpixel; }
-  void setCensusType(CensusType type) { densifier_.parameters().censusType = type; }
-  CensusType getCensusType() const { return densifier_.parameters().censusType; }
   /// Matching resolution: 1 (default) or 0.5, the paper's half-scale mode (about 4x less work;
   /// numDisparities must then be a multiple of 32). The disparity image and an organized output
   /// keep the full size either way.
@@ -178,66 +166,15 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// PCL's name, as pcl::NormalEstimationOMP::setNumberOfThreads.
   void setNumberOfThreads(int threads) { densifier_.parameters().threads = threads; }
   int getNumberOfThreads() const { return densifier_.parameters().threads; }
-  /// Whether the per-point confidence is computed (default true; Parameters::confidence). Off,
-  /// a minimum confidence above 0 is an error and the confidence field is NaN.
-  void setComputeConfidence(bool compute) { densifier_.parameters().confidence = compute; }
-  bool getComputeConfidence() const { return densifier_.parameters().confidence; }
-  /// Every matcher parameter at once.
-  void setParameters(const Parameters& params) { densifier_.setParameters(params); }
-  const Parameters& getParameters() const { return densifier_.parameters(); }
   /// The backend asked for (default Auto); getUsedBackend() tells which one matched.
   void setBackend(Backend backend) { densifier_.setBackend(backend); }
   Backend getBackend() const { return densifier_.backend(); }
-
-  // ---- projection of the scan: geometry::ProjectionOptions; checked in filter() -------------
-
-  /// Scan points nearer / farther than these (z in the camera frame [m]) are not used
-  /// (defaults 0.5 and infinity).
-  void setMinPointDepth(double depth) { densifier_.projectionOptions().minDepth = depth; }
-  double getMinPointDepth() const { return densifier_.projectionOptions().minDepth; }
-  void setMaxPointDepth(double depth) { densifier_.projectionOptions().maxDepth = depth; }
-  double getMaxPointDepth() const { return densifier_.projectionOptions().maxDepth; }
-  /// The occlusion filter (geometry::OcclusionFilter): drops scan points that the camera
-  /// cannot see because a nearer surface encloses them.
-  void setOcclusionFilter(bool enabled) { densifier_.projectionOptions().occlusion.enabled = enabled; }
-  bool getOcclusionFilter() const { return densifier_.projectionOptions().occlusion.enabled; }
-  void setOcclusionHalfWidth(int pixels) { densifier_.projectionOptions().occlusion.halfWidth = pixels; }
-  int getOcclusionHalfWidth() const { return densifier_.projectionOptions().occlusion.halfWidth; }
-  void setOcclusionHalfHeight(int pixels) { densifier_.projectionOptions().occlusion.halfHeight = pixels; }
-  int getOcclusionHalfHeight() const { return densifier_.projectionOptions().occlusion.halfHeight; }
-  void setOcclusionMinGap(double pixels) { densifier_.projectionOptions().occlusion.minGap = pixels; }
-  double getOcclusionMinGap() const { return densifier_.projectionOptions().occlusion.minGap; }
-  void setOcclusionRelativeGap(double fraction) { densifier_.projectionOptions().occlusion.relativeGap = fraction; }
-  double getOcclusionRelativeGap() const { return densifier_.projectionOptions().occlusion.relativeGap; }
-  void setOcclusionRequireEnclosed(bool enclosed) {
-    densifier_.projectionOptions().occlusion.requireEnclosed = enclosed;
-  }
-  bool getOcclusionRequireEnclosed() const { return densifier_.projectionOptions().occlusion.requireEnclosed; }
-  void setProjectionOptions(const geometry::ProjectionOptions& options) { densifier_.setProjectionOptions(options); }
-  const geometry::ProjectionOptions& getProjectionOptions() const { return densifier_.projectionOptions(); }
-
-  /// LiDAR-only mode: no points above the scan's top or below its bottom beam, per column,
-  /// where nothing was measured (default true).
-  void setCropToScan(bool crop) { densifier_.setCropToScan(crop); }
-  bool getCropToScan() const { return densifier_.cropToScan(); }
   /// Points whose confidence is below `minConfidence` in [0, 1] are dropped (0 keeps every
   /// pixel); see Densifier::setMinConfidence. Throws std::invalid_argument outside [0, 1].
   void setMinConfidence(double minConfidence) { densifier_.setMinConfidence(minConfidence); }
   double getMinConfidence() const { return densifier_.minConfidence(); }
 
-  /// Sky removal and the isolated/flying-point filter between matching and the cloud (both on by
-  /// default, in the modes with LiDAR; pipeline/output_filters.hpp). Options checked in filter().
-  void setSkyFilter(bool enabled) { densifier_.outputFilters().sky.enabled = enabled; }
-  bool getSkyFilter() const { return densifier_.outputFilters().sky.enabled; }
-  void setOutlierFilter(bool enabled) { densifier_.outputFilters().outliers.enabled = enabled; }
-  bool getOutlierFilter() const { return densifier_.outputFilters().outliers.enabled; }
-  void setOutputFilters(const OutputFilterOptions& options) { densifier_.setOutputFilters(options); }
-  /// Whether a stereo pair that looks swapped is refused (default true; Densifier::setPairCheck).
-  void setPairCheck(bool check) { densifier_.setPairCheck(check); }
-  bool getPairCheck() const { return densifier_.pairCheck(); }
-  const OutputFilterOptions& getOutputFilters() const { return densifier_.outputFilters(); }
-
-  // ---- the output cloud: geometry::ReprojectionOptions; checked in filter() -----------------
+  // ---- the output cloud (geometry::ReprojectionOptions) ------------------------------------
 
   void setKeepOrganized(bool keep) { densifier_.reprojectionOptions().keepOrganized = keep; }
   bool getKeepOrganized() const { return densifier_.reprojectionOptions().keepOrganized; }
@@ -251,10 +188,6 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   /// Every `stride`-th pixel in x and y (default 1).
   void setStride(int stride) { densifier_.reprojectionOptions().stride = stride; }
   int getStride() const { return densifier_.reprojectionOptions().stride; }
-  void setReprojectionOptions(const geometry::ReprojectionOptions& options) {
-    densifier_.setReprojectionOptions(options);
-  }
-  const geometry::ReprojectionOptions& getReprojectionOptions() const { return densifier_.reprojectionOptions(); }
 
   // ---- one frame and its results ----------------------------------------------------------
 

@@ -18,6 +18,7 @@
 #include "lidar_sgm/geometry/disparity_range.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/densifier_config.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
 #include "lidar_sgm/pipeline/pair_orientation.hpp"
 
@@ -29,16 +30,6 @@ struct DensificationTimings {
   double match = 0;      ///< LiDAR-SGM (all stages of the core), the LiDAR-only crop, the output filters
   double reproject = 0;  ///< dense disparity -> depth image and 3D points
   double total() const { return project + match + reproject; }
-};
-
-/// Where a run's disparity search range comes from.
-enum class DisparityRangeMode {
-  /// From the frame's projected LiDAR (geometry::disparityRangeFromLidar): minDisparity 0,
-  /// numDisparities covering the nearest surface the scan saw. A frame without LiDAR points
-  /// (stereo-only) keeps the fixed range of parameters().
-  FromLidar,
-  /// parameters().minDisparity / numDisparities as given (the paper: [0, 128)).
-  Fixed,
 };
 
 /// Holds the calibration, images, parameters and buffers between frames; run() does one frame.
@@ -89,55 +80,63 @@ class Densifier {
   void setColorImage(ImageView<const Rgb8> color);
   bool hasColorImage() const { return !color_.empty(); }
 
-  // ---- options --------------------------------------------------------------------------
+  // ---- options ----------------------------------------------------------------------------
+
+  /// Everything the front ends can set, at once (densifier_config.hpp; config_options.hpp reads
+  /// it from options by name). Throws std::invalid_argument, naming the setting, when `config` is
+  /// invalid; the Densifier keeps its previous configuration then.
+  void setConfig(const DensifierConfig& config);
+  const DensifierConfig& config() const { return config_; }
+
+  // The setters below change one part of config(); a run validates the whole.
 
   /// The matcher's parameters. Their minDisparity / numDisparities are the fixed range: used
   /// as given in DisparityRangeMode::Fixed, and in FromLidar only for frames without LiDAR.
-  void setParameters(const Parameters& params) { params_ = params; }
-  const Parameters& parameters() const { return params_; }
-  Parameters& parameters() { return params_; }
-  void setBackend(Backend backend) { backend_ = backend; }
-  Backend backend() const { return backend_; }
-  void setProjectionOptions(const geometry::ProjectionOptions& o) { projectionOptions_ = o; }
-  const geometry::ProjectionOptions& projectionOptions() const { return projectionOptions_; }
-  geometry::ProjectionOptions& projectionOptions() { return projectionOptions_; }
-  void setReprojectionOptions(const geometry::ReprojectionOptions& o) { reprojectionOptions_ = o; }
-  const geometry::ReprojectionOptions& reprojectionOptions() const { return reprojectionOptions_; }
-  geometry::ReprojectionOptions& reprojectionOptions() { return reprojectionOptions_; }
+  void setParameters(const Parameters& params) { config_.matcher = params; }
+  const Parameters& parameters() const { return config_.matcher; }
+  Parameters& parameters() { return config_.matcher; }
+  void setBackend(Backend backend) { config_.backend = backend; }
+  Backend backend() const { return config_.backend; }
+  void setProjectionOptions(const geometry::ProjectionOptions& o) { config_.projection = o; }
+  const geometry::ProjectionOptions& projectionOptions() const { return config_.projection; }
+  geometry::ProjectionOptions& projectionOptions() { return config_.projection; }
+  void setReprojectionOptions(const geometry::ReprojectionOptions& o) { config_.reprojection = o; }
+  const geometry::ReprojectionOptions& reprojectionOptions() const { return config_.reprojection; }
+  geometry::ReprojectionOptions& reprojectionOptions() { return config_.reprojection; }
 
   /// Where the search range comes from (default FromLidar) and, for FromLidar, the rule's numbers.
-  void setDisparityRangeMode(DisparityRangeMode mode) { rangeMode_ = mode; }
-  DisparityRangeMode disparityRangeMode() const { return rangeMode_; }
-  void setDisparityRangeRule(const geometry::DisparityRangeRule& rule) { rangeRule_ = rule; }
-  const geometry::DisparityRangeRule& disparityRangeRule() const { return rangeRule_; }
+  void setDisparityRangeMode(DisparityRangeMode mode) { config_.rangeMode = mode; }
+  DisparityRangeMode disparityRangeMode() const { return config_.rangeMode; }
+  void setDisparityRangeRule(const geometry::DisparityRangeRule& rule) { config_.rangeRule = rule; }
+  const geometry::DisparityRangeRule& disparityRangeRule() const { return config_.rangeRule; }
 
   /// LiDAR-only mode: clear the pixels above the scan's top and below its bottom point per
   /// column (+- lidarCoverageRows rows, +-2 columns), where nothing was measured (default on).
-  void setCropToScan(bool crop) { cropToScan_ = crop; }
-  bool cropToScan() const { return cropToScan_; }
+  void setCropToScan(bool crop) { config_.cropToScan = crop; }
+  bool cropToScan() const { return config_.cropToScan; }
 
   /// Drop the pixels whose confidence (core/confidence.hpp) is below `minConfidence` in [0, 1]
   /// from the disparity, depth and cloud alike (0 keeps every pixel; default
   /// kDefaultMinConfidence). Needs parameters().confidence (a run throws otherwise when > 0).
   /// Throws std::invalid_argument outside [0, 1].
   void setMinConfidence(double minConfidence);
-  double minConfidence() const { return minConfidence_; }
+  double minConfidence() const { return config_.minConfidence; }
   /// The sky and outlier filters between matching and reprojection (output_filters.hpp; both on
   /// by default, in the modes with LiDAR): what they remove is missing from disparity(), depth()
   /// and the cloud alike.
-  void setOutputFilters(const OutputFilterOptions& o) { outputFilters_ = o; }
+  void setOutputFilters(const OutputFilterOptions& o) { config_.filters = o; }
+  const OutputFilterOptions& outputFilters() const { return config_.filters; }
+  OutputFilterOptions& outputFilters() { return config_.filters; }
   /// Whether a stereo pair that looks swapped (pair_orientation.hpp: the LiDAR's disparities,
   /// or without LiDAR most matches, find the right image on the wrong side) is refused with
   /// std::invalid_argument (default true). Off, it is matched as given.
-  void setPairCheck(bool check) { pairCheck_ = check; }
-  bool pairCheck() const { return pairCheck_; }
-  const OutputFilterOptions& outputFilters() const { return outputFilters_; }
-  OutputFilterOptions& outputFilters() { return outputFilters_; }
+  void setPairCheck(bool check) { config_.pairCheck = check; }
+  bool pairCheck() const { return config_.pairCheck; }
 
   /// Whether run() also fills depth() and the dense cloud (default true). Off, a run stops at
   /// the disparity (what the disparity evaluation and the matcher benchmark need).
-  void setComputeCloud(bool compute) { computeCloud_ = compute; }
-  bool computeCloud() const { return computeCloud_; }
+  void setComputeCloud(bool compute) { config_.computeCloud = compute; }
+  bool computeCloud() const { return config_.computeCloud; }
 
   // ---- one frame ------------------------------------------------------------------------
 
@@ -210,14 +209,9 @@ class Densifier {
 
   geometry::StereoCalibration calibration_;
   geometry::StereoCalibration used_;
-  Parameters params_;
+  DensifierConfig config_;
   Parameters usedParams_;
-  DisparityRangeMode rangeMode_ = DisparityRangeMode::FromLidar;
-  geometry::DisparityRangeRule rangeRule_;
   geometry::DisparityRange usedRange_;
-  Backend backend_ = Backend::Auto;
-  geometry::ProjectionOptions projectionOptions_;
-  geometry::ReprojectionOptions reprojectionOptions_;
   Image<std::uint8_t> left_;
   Image<std::uint8_t> right_;
   Image<std::uint16_t> left16_;
@@ -234,13 +228,8 @@ class Densifier {
   geometry::DenseCloud cloud_;
   geometry::ProjectedLidar projected_;
   DensificationTimings timings_;
-  OutputFilterOptions outputFilters_;
   OutputFilterStats filterStats_;
   MatchMode lastMode_ = MatchMode::LidarOnly;
-  bool cropToScan_ = true;
-  double minConfidence_ = kDefaultMinConfidence;
-  bool computeCloud_ = true;
-  bool pairCheck_ = true;
   PairOrientation pairOrientation_;
   bool haveCalibration_ = false;  ///< the last run had a calibration (depth and cloud possible)
 };
