@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "core/backend_registry.hpp"
-#include "core/baseline_ratio.hpp"
+#include "core/fixed_point.hpp"
 #include "core/confidence_inputs.hpp"
 #include "core/half_scale.hpp"
 
