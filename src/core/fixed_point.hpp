@@ -1,7 +1,7 @@
 #pragma once
 // The fixed-point forms of the two real-valued settings the backends compute with. Internal to
-// the core; the backends' stage contract (backends/common/stages.hpp) includes it, so the arrow
-// points from the backends to the core.
+// the core, which puts them into the frame plan (frame_plan.hpp); the backends' stage contract
+// (backends/common/stages.hpp) includes it, so the arrow points from the backends to the core.
 
 #include <cmath>
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <utility>
 
 #include "backends/common/lidar_weights.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
@@ -11,9 +12,7 @@
 
 namespace lidar_sgm {
 
-std::unique_ptr<Matcher> createCpuMatcher(const Parameters& params) {
-  return std::make_unique<cpu::CpuMatcher>(params);
-}
+std::unique_ptr<MatcherBackend> createCpuMatcher() { return std::make_unique<cpu::CpuMatcher>(); }
 
 namespace cpu {
 namespace {
@@ -39,23 +38,13 @@ void resizeKeep(std::vector<T>& v, std::size_t n) {
 }  // namespace
 
 struct CpuMatcher::Frame {
-  Parameters params;
-  MatchMode mode = MatchMode::StereoOnly;
+  Frame(const FramePlan& framePlan, FrameResults& results) : plan(framePlan), out(results) {}
+  const FramePlan& plan;
+  FrameResults& out;
   GrayImageView left;  // empty in LiDAR-only mode (the confidence reads no image there)
   const LidarPoints* lidar = nullptr;
-  bool up = false;
-  int ratio16 = 0;
-  int width = 0;
-  int height = 0;
-  int D = 0;
-  int scale = 1;         // census cost scale: 2 for the 31-bit centre-symmetric census
-  int alphaWeight = 0;
-  bool adaptiveAlpha = false;  // fused mode: per-pixel weights (lidarWeights_), else alphaWeight everywhere
-  int verticalPaths = 1;  // per sweep: 1 with 4 paths, 3 with 8
-  bool lrCheck = false;
-  bool confidence = false;    // the peak-ratio margin (core/confidence.hpp)
-  bool confidenceLr = false;  // ... and the left-right difference (not in LiDAR-only mode)
   int threads = 1;
+  int verticalPaths = 1;       // per sweep: 1 with 4 paths, 3 with 8
   bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
   int planePad = 0;            // the right census planes' layout (census_cost.cpp)
   std::size_t planeStride = 0;
@@ -65,7 +54,6 @@ struct CpuMatcher::Worker {
   std::vector<std::uint8_t> stereo;    // C_S (fused mode)
   std::vector<std::uint8_t> lidar;     // C_L (fused mode)
   std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
-  std::vector<std::uint8_t> touched;   // per pixel: whether a LiDAR point touches it
   std::vector<std::uint16_t> total;      // S of one pixel (the selection needs no more)
   std::vector<std::uint8_t> rightward;  // L of the left-to-right path along one row (slots, bytes)
   std::vector<std::uint8_t> leftward;   // ... and of the right-to-left path
@@ -77,85 +65,69 @@ struct CpuMatcher::Worker {
   double selectMs = 0;
 };
 
-void CpuMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                     const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
-  runWithUpCamera(params, left, right, GrayImageView(), 0, lidar, mode, disparity);
-}
-
-void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                                 const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                                 ImageView<std::int16_t> disparity) {
+void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                     FrameResults& out) {
   const auto start = Clock::now();
-  Frame f;
-  f.params = params;
-  f.mode = mode;
-  if (mode != MatchMode::LidarOnly) f.left = left;
-  f.lidar = mode == MatchMode::StereoOnly ? nullptr : lidar;
-  f.up = !up.empty() && mode != MatchMode::LidarOnly;
-  f.ratio16 = ratio16;
-  f.width = disparity.width;
-  f.height = disparity.height;
-  f.D = params.numDisparities;
-  f.scale = params.censusType == CensusType::Census9x7 ? 1 : 2;
-  f.alphaWeight = alphaWeight(params.alpha);
-  f.adaptiveAlpha = mode == MatchMode::Fused && params.alphaMode == AlphaMode::Adaptive;
+  const Parameters& params = plan.params;
+  Frame f(plan, out);
+  f.left = in.left;
+  f.lidar = in.lidar;
   f.verticalPaths = params.paths == 8 ? 3 : 1;
   f.threads = effectiveThreads(params);
   // The largest matching cost, and so the largest path cost L <= C + P2 (Eq. 1).
-  const int maxCost = mode == MatchMode::StereoOnly ? kMaxCensusCost
-                      : mode == MatchMode::LidarOnly ? params.lidarCostCap
-                                                     : std::max(kMaxCensusCost, params.lidarCostCap);
+  const int maxCost = plan.mode == MatchMode::StereoOnly  ? kMaxCensusCost
+                      : plan.mode == MatchMode::LidarOnly ? params.lidarCostCap
+                                                          : std::max(kMaxCensusCost, params.lidarCostCap);
   f.paths8 = pathCostsFit8Bits(maxCost, params.P2);
-  f.lrCheck = mode == MatchMode::StereoOnly ? params.lrCheck
-                                            : mode == MatchMode::Fused && params.lrCheck && params.lrCheckWithLidar;
-  f.confidence = params.confidence;
-  f.confidenceLr = params.confidence && mode != MatchMode::LidarOnly;
 
-  if (mode != MatchMode::LidarOnly) {
-    const auto census = [&](const GrayImageView& image, Image<std::uint64_t>& out) {
-      out.resize(image.width(), image.height());
+  if (plan.useCameras()) {
+    const auto census = [&](const GrayImageView& image, Image<std::uint64_t>& bits) {
+      bits.resize(image.width(), image.height());
       if (!image.gray8.empty()) {
-        censusTransform(image.gray8, params.censusType, out.view(), f.threads);
+        censusTransform(image.gray8, params.censusType, bits.view(), f.threads);
       } else {
-        censusTransform(image.gray16, params.censusType, out.view(), f.threads);
+        censusTransform(image.gray16, params.censusType, bits.view(), f.threads);
       }
     };
-    census(left, leftCensus_);
-    census(right, rightCensus_);
-    if (f.up) census(up, upCensus_);
-    f.planePad = censusPlanePad(params.minDisparity, f.D);
-    f.planeStride = static_cast<std::size_t>(f.width) + 2 * static_cast<std::size_t>(f.planePad);
-    resizeKeep(rightPlanes_, f.planeStride * 8 * f.height);
-    parallelRanges(f.height, f.threads, [&](int y0, int y1) {
+    census(in.left, leftCensus_);
+    census(in.right, rightCensus_);
+    if (plan.upCamera()) census(in.up, upCensus_);
+    f.planePad = censusPlanePad(plan.minDisparity, plan.D);
+    f.planeStride = static_cast<std::size_t>(plan.width) + 2 * static_cast<std::size_t>(f.planePad);
+    resizeKeep(rightPlanes_, f.planeStride * 8 * plan.height);
+    parallelRanges(plan.height, f.threads, [&](int y0, int y1) {
       for (int y = y0; y < y1; ++y) {
-        censusPlanes(rightCensus_.view().row(y), f.width, f.planePad,
+        censusPlanes(rightCensus_.view().row(y), plan.width, f.planePad,
                      rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride, f.planeStride);
       }
     });
   }
-  if (mode != MatchMode::StereoOnly && (tableSigma_ != params.sigma || tableCap_ != params.lidarCostCap)) {
+  if (plan.useLidar && (tableSigma_ != params.sigma || tableCap_ != params.lidarCostCap)) {
     table_ = LidarCostTable(params.sigma, params.lidarCostCap);
     tableSigma_ = params.sigma;
     tableCap_ = params.lidarCostCap;
   }
-  if (mode != MatchMode::StereoOnly) {
-    touched_.resize(f.width, f.height);
-    parallelRanges(f.height, f.threads, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) lidarTouchedRow(*lidar, y, touched_.view().row(y));
+  if (plan.useLidar) {
+    touched_.resize(plan.width, plan.height);
+    parallelRanges(plan.height, f.threads, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) lidarTouchedRow(*f.lidar, y, touched_.view().row(y));
     });
   }
-  if (f.adaptiveAlpha) {
+  if (plan.adaptiveAlpha) {
     // Shared with every backend (backends/common): the same integer weights as cpu_ref's.
-    lidarWeights_.resize(f.width, f.height);
-    lidarWeights(*lidar, params, lidarWeights_.view());
+    lidarWeights_.resize(plan.width, plan.height);
+    lidarWeights(*f.lidar, params, lidarWeights_.view());
   }
-  timings_.census = msBetween(start, Clock::now());
+  out.timings.census = msBetween(start, Clock::now());
   runStages(f, disparity);
 }
 
 void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* cost, Worker& w) {
-  const auto n = static_cast<std::size_t>(x1 - x0) * f.D;
-  const Parameters& p = f.params;
+  const FramePlan& plan = f.plan;
+  const int W = plan.width;
+  const int D = plan.D;
+  const auto n = static_cast<std::size_t>(x1 - x0) * D;
+  const Parameters& p = plan.params;
   auto t0 = Clock::now();
   const auto lap = [&t0](double& ms) {
     const auto t1 = Clock::now();
@@ -164,81 +136,81 @@ void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* 
   };
   // The LiDAR cost, streamed from the points around each pixel (no C_L volume). Most pixels
   // have no point around them: C_L = 0 there, without looking for points.
-  std::uint8_t* lidar = f.mode == MatchMode::LidarOnly ? cost : w.lidar.data();
-  if (f.mode != MatchMode::StereoOnly) {
-    std::uint8_t* support = support_.view().row(y);
+  std::uint8_t* lidar = plan.mode == MatchMode::LidarOnly ? cost : w.lidar.data();
+  if (plan.useLidar) {
+    std::uint8_t* support = f.out.support.view().row(y);
     const std::uint8_t* touched = touched_.view().row(y);
     for (int x = x0; x < x1; ++x) {
-      std::uint8_t* c = lidar + static_cast<std::size_t>(x - x0) * f.D;
+      std::uint8_t* c = lidar + static_cast<std::size_t>(x - x0) * D;
       if (touched[x] != 0) {
-        lidarCostPixel(*f.lidar, table_, x, y, p.minDisparity, f.D, c);
-      } else if (f.mode == MatchMode::LidarOnly || f.up) {
-        std::memset(c, 0, static_cast<std::size_t>(f.D));
+        lidarCostPixel(*f.lidar, table_, x, y, p.minDisparity, D, c);
+      } else if (plan.mode == MatchMode::LidarOnly || plan.upCamera()) {
+        std::memset(c, 0, static_cast<std::size_t>(D));
       }
       support[x] = touched[x];
     }
     lap(w.lidarCostMs);
   }
-  if (f.mode == MatchMode::LidarOnly) return;
-  const std::uint16_t* weights = f.adaptiveAlpha ? lidarWeights_.view().row(y) : nullptr;
+  if (!plan.useCameras()) return;
+  const std::uint16_t* weights = plan.adaptiveAlpha ? lidarWeights_.view().row(y) : nullptr;
   const std::uint64_t* leftRow = leftCensus_.view().row(y);
   const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
-  if (!f.up) {
+  if (!plan.upCamera()) {
     // C_S, fused per pixel while it is in the L1 cache.
-    if (f.mode == MatchMode::Fused) {
-      censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity,
-                         f.D, lidar, touched_.view().row(y), weights, f.alphaWeight, p.stereoCostWithoutLidar, cost);
+    if (plan.mode == MatchMode::Fused) {
+      censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, W, x0, x1, p.minDisparity,
+                         D, lidar, touched_.view().row(y), weights, plan.alphaWeight, p.stereoCostWithoutLidar, cost);
     } else {
-      censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity, f.D,
+      censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, W, x0, x1, p.minDisparity, D,
                     cost);
     }
     lap(w.censusCostMs);
     return;
   }
   // Triple-SGM: the camera cost C_S3 = (C_S + C_V + 1) >> 1 takes C_S's place in Eq. 5.
-  std::uint8_t* camera = f.mode == MatchMode::Fused ? w.stereo.data() : cost;
-  censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity, f.D, camera);
+  std::uint8_t* camera = plan.mode == MatchMode::Fused ? w.stereo.data() : cost;
+  censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, W, x0, x1, p.minDisparity, D, camera);
   lap(w.censusCostMs);
-  verticalCensusCostRow(leftRow, upCensus_.view(), y, x0, x1, f.ratio16, p.minDisparity, f.D, f.scale,
+  verticalCensusCostRow(leftRow, upCensus_.view(), y, x0, x1, plan.ratio16, p.minDisparity, D, plan.censusScale,
                         w.vertical.data());
   combineCameraCostRow(camera, w.vertical.data(), n, camera);
   lap(w.verticalCostMs);
-  if (f.mode != MatchMode::Fused) return;
+  if (plan.mode != MatchMode::Fused) return;
   if (weights == nullptr) {
-    fuseCostRow(lidar, camera, n, f.alphaWeight, cost);
+    fuseCostRow(lidar, camera, n, plan.alphaWeight, cost);
   } else {
     for (int x = x0; x < x1; ++x) {
-      const auto offset = static_cast<std::size_t>(x - x0) * f.D;
-      fuseCostRow(lidar + offset, camera + offset, static_cast<std::size_t>(f.D), weights[x], cost + offset);
+      const auto offset = static_cast<std::size_t>(x - x0) * D;
+      fuseCostRow(lidar + offset, camera + offset, static_cast<std::size_t>(D), weights[x], cost + offset);
     }
   }
   if (p.stereoCostWithoutLidar) {
     const std::uint8_t* touched = touched_.view().row(y);
     for (int x = x0; x < x1; ++x) {
       if (touched[x] != 0) continue;
-      const auto offset = static_cast<std::size_t>(x - x0) * f.D;
-      std::memcpy(cost + offset, camera + offset, static_cast<std::size_t>(f.D));
+      const auto offset = static_cast<std::size_t>(x - x0) * D;
+      std::memcpy(cost + offset, camera + offset, static_cast<std::size_t>(D));
     }
   }
   lap(w.fuseMs);
 }
 
 void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
-  const int W = f.width;
-  const int H = f.height;
-  const std::size_t slot = static_cast<std::size_t>(pathSlot(f.D));
-  support_.resize(W, H);
-  if (f.mode == MatchMode::StereoOnly) support_.fill(0);
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  const std::size_t slot = static_cast<std::size_t>(pathSlot(f.plan.D));
+  f.out.support.resize(W, H);
+  if (!f.plan.useLidar) f.out.support.fill(0);
 
   // Buffers, grown only (no allocation per frame after the first of a size).
-  cost_.reserve(static_cast<std::size_t>(W) * H * f.D);
+  cost_.reserve(static_cast<std::size_t>(W) * H * f.plan.D);
   const std::size_t rowSlots = static_cast<std::size_t>(W) * slot;
   const std::size_t element = f.paths8 ? 1 : 2;
   const std::size_t rowBytes = rowSlots * element;
   const std::size_t chunkRows = 2 * static_cast<std::size_t>(kChunkRows);  // two parities
   // Path rows are filled with sentinels (all ones) once per layout: the kernels never write a
   // slot's two ends.
-  const std::size_t layout = (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.D);
+  const std::size_t layout = (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.plan.D);
   const bool newLayout = layout != pathLayout_;
   pathLayout_ = layout;
   // Per chunk: each vertical path downward and upward (2 * verticalPaths rows of kChunkRows).
@@ -252,25 +224,27 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   resizeKeep(checkpointMins_, checkpoints * W);
   const int threads = std::max(1, std::min(f.threads, W));
   workers_.resize(static_cast<std::size_t>(threads));
-  const std::size_t partMax = (static_cast<std::size_t>(W) / threads + 1) * f.D;
+  const std::size_t partMax = (static_cast<std::size_t>(W) / threads + 1) * f.plan.D;
   for (Worker& w : workers_) {
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);
-    if (f.up) resizeKeep(w.vertical, partMax);
-    resizeKeep(w.total, static_cast<std::size_t>(f.D));
-    if (f.lrCheck || f.confidenceLr) resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.D, f.params.minDisparity));
+    if (f.plan.upCamera()) resizeKeep(w.vertical, partMax);
+    resizeKeep(w.total, static_cast<std::size_t>(f.plan.D));
+    if (f.plan.lrCheck || f.plan.confidenceLr) {
+      resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.plan.D, f.plan.minDisparity));
+    }
     if (newLayout || w.rightward.size() != rowBytes) w.rightward.assign(rowBytes, 0xFF);
     if (newLayout || w.leftward.size() != rowBytes) w.leftward.assign(rowBytes, 0xFF);
     w.censusCostMs = w.verticalCostMs = w.lidarCostMs = w.fuseMs = w.selectMs = 0;
   }
   rawDisparity_.resize(W, H);
   bestIndex_.resize(W, H);
-  if (f.lrCheck || f.confidenceLr) rightIndex_.resize(W, H);
-  if (f.confidence) {
-    confidenceInputs_.margin.resize(W, H);
-    confidenceInputs_.bestCost.resize(W, H);
+  if (f.plan.lrCheck || f.plan.confidenceLr) rightIndex_.resize(W, H);
+  if (f.plan.confidence) {
+    f.out.confidenceInputs.margin.resize(W, H);
+    f.out.confidenceInputs.bestCost.resize(W, H);
   }
-  if (f.confidenceLr) confidenceInputs_.leftRightDifference.resize(W, H);
+  if (f.plan.confidenceLr) f.out.confidenceInputs.leftRightDifference.resize(W, H);
 
   Frame frame = f;
   frame.threads = threads;
@@ -285,42 +259,42 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   const double sweeps = msBetween(t0, Clock::now());
   // Worker 0's clocks split the sweeps' wall time into the stages it streamed.
   const Worker& w0 = workers_[0];
-  timings_.censusCost = w0.censusCostMs;
-  timings_.verticalCensusCost = w0.verticalCostMs;
-  timings_.lidarCost = w0.lidarCostMs;
-  timings_.fuseCosts = w0.fuseMs;
-  timings_.selectDisparity = w0.selectMs;
-  timings_.aggregatePaths =
+  f.out.timings.censusCost = w0.censusCostMs;
+  f.out.timings.verticalCensusCost = w0.verticalCostMs;
+  f.out.timings.lidarCost = w0.lidarCostMs;
+  f.out.timings.fuseCosts = w0.fuseMs;
+  f.out.timings.selectDisparity = w0.selectMs;
+  f.out.timings.aggregatePaths =
       std::max(0.0, sweeps - w0.censusCostMs - w0.verticalCostMs - w0.lidarCostMs - w0.fuseMs - w0.selectMs);
 
   t0 = Clock::now();
   const SelectedDisparity selected{rawDisparity_.view(), bestIndex_.view()};
-  if (f.lrCheck) {
+  if (f.plan.lrCheck) {
     ImageView<const std::uint8_t> covered;
-    if (f.mode == MatchMode::Fused) {
+    if (f.plan.lrCheckTrustsLidar) {
       coverage_.resize(W, H);
-      lidarCoverage(*f.lidar, f.params.lidarCoverageRows, coverage_.view(), threads);
+      lidarCoverage(*f.lidar, f.plan.params.lidarCoverageRows, coverage_.view(), threads);
       covered = coverage_.view();
     }
-    leftRightCheck(selected, rightIndex_.view(), covered, f.params.minDisparity, f.params.disp12MaxDiff,
-                   /*keepNoCounterpart=*/f.mode == MatchMode::Fused, threads);
-    timings_.leftRightCheck = msBetween(t0, Clock::now());
+    leftRightCheck(selected, rightIndex_.view(), covered, f.plan.params.minDisparity, f.plan.params.disp12MaxDiff,
+                   /*keepNoCounterpart=*/f.plan.lrCheckTrustsLidar, threads);
+    f.out.timings.leftRightCheck = msBetween(t0, Clock::now());
     t0 = Clock::now();
   }
-  medianFilter(rawDisparity_.view(), f.params.medianSize, disparity, threads);
-  timings_.medianFilter = msBetween(t0, Clock::now());
-  if (f.confidence) {
+  medianFilter(rawDisparity_.view(), f.plan.params.medianSize, disparity, threads);
+  f.out.timings.medianFilter = msBetween(t0, Clock::now());
+  if (f.plan.confidence) {
     t0 = Clock::now();
     confidenceStage(f, disparity);
-    timings_.confidence = msBetween(t0, Clock::now());
+    f.out.timings.confidence = msBetween(t0, Clock::now());
   }
 }
 
 void CpuMatcher::confidenceStage(const Frame& f, ImageView<const std::int16_t> disparity) {
-  const int W = f.width;
-  const int H = f.height;
-  ConfidenceInputs& in = confidenceInputs_;
-  if (f.mode == MatchMode::LidarOnly) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  ConfidenceInputs& in = f.out.confidenceInputs;
+  if (f.plan.mode == MatchMode::LidarOnly) {
     // No right view: no counterpart anywhere (the core's convention, confidence.hpp).
     in.leftRightDifference.resize(W, H);
     in.leftRightDifference.fill(kNoCounterpartDifference);
@@ -329,19 +303,19 @@ void CpuMatcher::confidenceStage(const Frame& f, ImageView<const std::int16_t> d
   in.texture.resize(W, H);
   in.saturated.resize(W, H);
   in.disparityRange.resize(W, H);
-  confidence_.resize(W, H);
-  confidenceOfFrame(f.left, static_cast<const Image<std::uint8_t>&>(support_).view(), disparity, f.mode,
-                    f.params.paths, in, confidence_.view(), confidenceBuffers_, f.threads);
+  f.out.confidence.resize(W, H);
+  confidenceOfFrame(f.left, std::as_const(f.out.support).view(), disparity, f.plan.mode,
+                    f.plan.params.paths, in, f.out.confidence.view(), confidenceBuffers_, f.threads);
 }
 
 template <typename PathT>
 void CpuMatcher::sweepUp(const Frame& f) {
-  const int W = f.width;
-  const int H = f.height;
-  const int D = f.D;
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  const int D = f.plan.D;
   const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
   const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
-  const Parameters& p = f.params;
+  const Parameters& p = f.plan.params;
 #pragma omp parallel num_threads(f.threads)
   {
     const int team = teamSize();
@@ -378,12 +352,12 @@ void CpuMatcher::sweepUp(const Frame& f) {
 
 template <typename PathT>
 void CpuMatcher::sweepDown(const Frame& f) {
-  const int W = f.width;
-  const int H = f.height;
-  const int D = f.D;
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  const int D = f.plan.D;
   const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
   const std::size_t costRowSize = static_cast<std::size_t>(W) * D;
-  const Parameters& p = f.params;
+  const Parameters& p = f.plan.params;
   const auto costRow = [&](int y) { return cost_.data() + static_cast<std::size_t>(y) * costRowSize; };
   // Chunk buffers of each parity: paths [0, vp) downward, [vp, 2 vp) upward (recomputed),
   // kChunkRows rows each (vp = verticalPaths).
@@ -464,19 +438,19 @@ void CpuMatcher::sweepDown(const Frame& f) {
         WinnerExtras extras;
         extras.width = W;
         extras.pixelTotal = true;  // nothing reads the row's S after the selection
-        if (f.lrCheck || f.confidenceLr) {
+        if (f.plan.lrCheck || f.plan.confidenceLr) {
           extras.rightScratch = w.rightScratch.data();
           extras.rightIndex = rightIndex_.view().row(y);
         }
-        if (f.confidence) {
-          extras.margin = confidenceInputs_.margin.view().row(y);
-          extras.bestCost = confidenceInputs_.bestCost.view().row(y);
+        if (f.plan.confidence) {
+          extras.margin = f.out.confidenceInputs.margin.view().row(y);
+          extras.bestCost = f.out.confidenceInputs.bestCost.view().row(y);
         }
         sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
                      w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y), &extras);
-        if (f.confidenceLr) {
+        if (f.plan.confidenceLr) {
           leftRightDifferenceRow(bestIndex_.view().row(y), rightIndex_.view().row(y), W, p.minDisparity,
-                                 confidenceInputs_.leftRightDifference.view().row(y));
+                                 f.out.confidenceInputs.leftRightDifference.view().row(y));
         }
         w.selectMs += msBetween(s0, Clock::now());
       }

@@ -31,27 +31,21 @@
 #include "backends/common/lidar_cost_table.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/huge_buffer.hpp"
-#include "lidar_sgm/core/matcher.hpp"
+#include "core/backend.hpp"
 
 namespace lidar_sgm {
 namespace cpu {
 
-class CpuMatcher final : public Matcher {
+class CpuMatcher final : public MatcherBackend {
  public:
-  explicit CpuMatcher(const Parameters& params) : Matcher(params) {}
   Backend backend() const override { return Backend::Cpu; }
-
- protected:
-  void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) override;
-  void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                       const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                       ImageView<std::int16_t> disparity) override;
+  void run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+           FrameResults& out) override;
   /// The confidence's core part runs here too, with the backend's threads (confidence.cpp).
   bool computesConfidence() const override { return true; }
 
  private:
-  struct Frame;  // the inputs of one compute(), resolved
+  struct Frame;  // one compute() call: the core's plan and how this backend lays it out
   struct Worker;  // one thread's scratch rows and stage clocks
   void runStages(const Frame& frame, ImageView<std::int16_t> disparity);
   template <typename PathT>
@@ -64,8 +58,8 @@ class CpuMatcher final : public Matcher {
     return reinterpret_cast<T*>(bytes.data()) + elementOffset;
   }
   void costRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* cost, Worker& worker);
-  /// The confidence and the inputs the core would compute (Matcher::computeConfidence), from
-  /// the frame's left image, support_ and the final disparity.
+  /// The confidence and the inputs the core would compute (the facade's computeConfidence), from
+  /// the frame's left image, the support and the final disparity.
   void confidenceStage(const Frame& frame, ImageView<const std::int16_t> disparity);
 
   // Buffers kept between frames (resized only when the frame size changes).
@@ -90,8 +84,8 @@ class CpuMatcher final : public Matcher {
   Image<std::int16_t> rightIndex_;
   Image<std::uint8_t> coverage_;
   Image<std::uint8_t> touched_;  // 1 where a LiDAR point lies in the pixel's 3x3 neighbourhood
-  Image<std::uint16_t> lidarWeights_;
-  ConfidenceBuffers confidenceBuffers_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
+  Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
+  ConfidenceBuffers confidenceBuffers_;
   LidarCostTable table_;
   float tableSigma_ = 0;
   int tableCap_ = -1;

@@ -20,9 +20,7 @@
 
 namespace lidar_sgm {
 
-std::unique_ptr<Matcher> createCudaMatcher(const Parameters& params) {
-  return std::make_unique<cuda::CudaMatcher>(params);
-}
+std::unique_ptr<MatcherBackend> createCudaMatcher() { return std::make_unique<cuda::CudaMatcher>(); }
 
 std::string cudaBackendUnavailable() { return cuda::cudaUnavailableReason(); }
 
@@ -119,32 +117,22 @@ struct CudaMatcher::Device {
   }
 };
 
-// Host buffers of computeOnDevice: what comes back from the device, kept between frames.
-struct CudaMatcher::HostCopies {
-  std::vector<LidarSample> samples;
-  Image<std::uint8_t> left8, right8;
-  Image<std::uint16_t> left16, right16;
-  Image<std::int16_t> disparity;
-};
-
-CudaMatcher::CudaMatcher(const Parameters& params) : Matcher(params) {
+CudaMatcher::CudaMatcher() {
   const std::string why = cudaUnavailableReason();
   if (!why.empty()) throw std::runtime_error("backend cuda: " + why);
   device_ = std::make_unique<Device>();
-  hostCopies_ = std::make_unique<HostCopies>();
 }
 
 CudaMatcher::~CudaMatcher() = default;
 
-void CudaMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                      const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
-  runStages(params, left, right, nullptr, 0, lidar, mode, disparity);
+void CudaMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                      FrameResults& out) {
+  runStages(plan, in, disparity, out, /*inputsOnDevice=*/false, /*outputOnDevice=*/false);
 }
 
-void CudaMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                                  const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                                  ImageView<std::int16_t> disparity) {
-  runStages(params, left, right, &up, ratio16, lidar, mode, disparity);
+void CudaMatcher::runOnDevice(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                              MemorySpace disparitySpace, FrameResults& out) {
+  runStages(plan, in, disparity, out, /*inputsOnDevice=*/true, disparitySpace == MemorySpace::Device);
 }
 
 namespace {
@@ -167,13 +155,14 @@ DeviceVolume<const T> asConst(DeviceVolume<T> volume) {
 
 }  // namespace
 
-void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, const GrayImageView& right,
-                            const GrayImageView* up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                            ImageView<std::int16_t> disparity, bool inputsOnDevice, bool outputOnDevice) {
+void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                            FrameResults& out, bool inputsOnDevice, bool outputOnDevice) {
   Device& dev = *device_;
-  const int width = disparity.width;
-  const int height = disparity.height;
-  const int D = p.numDisparities;
+  const Parameters& p = plan.params;
+  const MatchMode mode = plan.mode;
+  const int width = plan.width;
+  const int height = plan.height;
+  const int D = plan.D;
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   cudaStream_t stream = dev.stream;
   dev.mark(kStart);
@@ -183,14 +172,14 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
   s.width = width;
   s.height = height;
   s.numDisparities = D;
-  s.minDisparity = p.minDisparity;
-  s.useCamera = mode != MatchMode::LidarOnly;
-  s.useLidar = mode != MatchMode::StereoOnly;
-  s.censusScale = p.censusType == CensusType::Census9x7 ? 1 : 2;
-  s.ratio16 = ratio16;
-  const GrayImageView* cameras[3] = {&left, &right, up};
-  const int cameraCount = !s.useCamera ? 0 : up != nullptr ? 3 : 2;
-  const bool sixteen = s.useCamera && left.gray8.empty();
+  s.minDisparity = plan.minDisparity;
+  s.useCamera = plan.useCameras();
+  s.useLidar = plan.useLidar;
+  s.censusScale = plan.censusScale;
+  s.ratio16 = plan.ratio16;
+  const GrayImageView* cameras[3] = {&in.left, &in.right, &in.up};
+  const int cameraCount = plan.cameras;
+  const bool sixteen = s.useCamera && in.left.gray8.empty();
   // The cameras as the census reads them: the caller's device memory as it is, or an upload.
   DeviceImage<const std::uint8_t> images8[3];
   DeviceImage<const std::uint16_t> images16[3];
@@ -207,7 +196,7 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
     }
   }
   if (s.useLidar) {
-    uploadLidar(*lidar, dev.pixelStart, dev.disparities16, stream);
+    uploadLidar(*in.lidar, dev.pixelStart, dev.disparities16, stream);
     s.lidar = DeviceLidar{dev.pixelStart.data(), dev.disparities16.data(), width, height};
     if (dev.tableSigma != p.sigma || dev.tableCap != p.lidarCostCap) {
       dev.hostTable = LidarCostTable(p.sigma, p.lidarCostCap);
@@ -217,12 +206,12 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
     }
     s.table = DeviceCostTable{dev.table.data(), static_cast<int>(dev.hostTable.entries().size()), dev.hostTable.cap()};
     if (mode == MatchMode::Fused) {
-      if (p.alphaMode == AlphaMode::Fixed) {
-        s.alphaWeight = alphaWeight(p.alpha);
+      if (!plan.adaptiveAlpha) {
+        s.alphaWeight = plan.alphaWeight;
       } else {
         // The per-pixel LiDAR weight of Eq. 5, computed by the code every backend shares.
         dev.hostWeights.resize(width, height);
-        lidarWeights(*lidar, p, dev.hostWeights.view());
+        lidarWeights(*in.lidar, p, dev.hostWeights.view());
         uploadImage(std::as_const(dev.hostWeights).view(), dev.weights, stream);
         s.weights = DeviceImage<const std::uint16_t>{dev.weights.data(), width, height, width};
       }
@@ -260,29 +249,29 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
   const DeviceVolume<std::uint16_t> sum{dev.sum.data(), width, height, D};
   const DeviceImage<std::int16_t> raw = denseImage<std::int16_t>(dev.rawDisparity, width, height);
   const DeviceImage<std::int16_t> best = denseImage<std::int16_t>(dev.bestIndex, width, height);
-  cuda::selectDisparity(asConst(pathCosts), p.paths, sum, p.minDisparity, p.uniquenessRatio, p.subpixel, raw, best, stream);
+  cuda::selectDisparity(asConst(pathCosts), p.paths, sum, plan.minDisparity, p.uniquenessRatio, p.subpixel, raw, best,
+                        stream);
   // The confidence inputs that need S (core/confidence.hpp), read before the check invalidates.
-  const bool confidenceLr = p.confidence && mode != MatchMode::LidarOnly;
+  const bool confidenceLr = plan.confidenceLr;
   const DeviceImage<std::uint8_t> margin = denseImage<std::uint8_t>(dev.margin, width, height);
   const DeviceImage<std::uint16_t> bestCost = denseImage<std::uint16_t>(dev.bestCost, width, height);
-  if (p.confidence) cuda::peakRatioMargin(asConst(sum), asConst(best), margin, bestCost, stream);
+  if (plan.confidence) cuda::peakRatioMargin(asConst(sum), asConst(best), margin, bestCost, stream);
   dev.mark(kSelected);
 
-  const bool lrCheck = mode == MatchMode::StereoOnly ? p.lrCheck
-                                                      : mode == MatchMode::Fused && p.lrCheck && p.lrCheckWithLidar;
+  const bool lrCheck = plan.lrCheck;
   const DeviceImage<std::int16_t> rightIndex = denseImage<std::int16_t>(dev.rightIndex, width, height);
   const DeviceImage<std::uint8_t> difference = denseImage<std::uint8_t>(dev.leftRightDifference, width, height);
   if (confidenceLr || lrCheck) cuda::rightDisparityIndex(asConst(sum), p.minDisparity, rightIndex, stream);
   if (confidenceLr) cuda::leftRightDifference(asConst(best), asConst(rightIndex), p.minDisparity, difference, stream);
   if (lrCheck) {
     DeviceImage<const std::uint8_t> checkSupport;
-    if (mode == MatchMode::Fused) {
+    if (plan.lrCheckTrustsLidar) {
       const DeviceImage<std::uint8_t> coverage = denseImage<std::uint8_t>(dev.coverage, width, height);
       cuda::lidarCoverage(s.lidar, p.lidarCoverageRows, coverage, stream);
       checkSupport = asConst(coverage);
     }
     cuda::leftRightCheck(raw, best, asConst(rightIndex), checkSupport, p.minDisparity, p.disp12MaxDiff,
-                   /*keepNoCounterpart=*/mode == MatchMode::Fused, stream);
+                         /*keepNoCounterpart=*/plan.lrCheckTrustsLidar, stream);
   }
   dev.mark(kChecked);
   // The result straight into the caller's device memory, or into ours to be downloaded.
@@ -292,13 +281,13 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
   cuda::medianFilter(asConst(raw), p.medianSize, filtered, stream);
   dev.mark(kFiltered);
 
-  // The confidence's core part, as Matcher::computeConfidence does it on the host.
+  // The confidence's core part, as the core computes it on the host (core/confidence_inputs.hpp).
   const DeviceImage<std::uint8_t> distance = denseImage<std::uint8_t>(dev.lidarDistance, width, height);
   const DeviceImage<std::uint8_t> texture = denseImage<std::uint8_t>(dev.texture, width, height);
   const DeviceImage<std::uint8_t> saturated = denseImage<std::uint8_t>(dev.saturated, width, height);
   const DeviceImage<std::uint8_t> range = denseImage<std::uint8_t>(dev.disparityRange, width, height);
   const DeviceImage<std::uint8_t> confidence = denseImage<std::uint8_t>(dev.confidence, width, height);
-  if (p.confidence) {
+  if (plan.confidence) {
     if (!s.useLidar) LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(support.data, 0, pixels, stream));
     cuda::lidarDistance(asConst(support), denseImage<std::uint8_t>(dev.verticalDistance, width, height), distance,
                         stream);
@@ -322,41 +311,41 @@ void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, cons
 
   // Downloads: the disparity, and what the core reads besides it.
   if (!outputOnDevice) downloadImage(asConst(filtered), disparity, stream);
-  support_.resize(width, height);
+  out.support.resize(width, height);
   if (s.useLidar) {
-    downloadImage(asConst(support), support_.view(), stream);
+    downloadImage(asConst(support), out.support.view(), stream);
   } else {
-    support_.fill(0);
+    out.support.fill(0);
   }
-  if (p.confidence) {
-    ConfidenceInputs& in = confidenceInputs_;
+  if (plan.confidence) {
+    ConfidenceInputs& inputs = out.confidenceInputs;
     const auto download = [&](DeviceImage<std::uint8_t> from, Image<std::uint8_t>& to) {
       to.resize(width, height);
       downloadImage(asConst(from), to.view(), stream);
     };
-    download(margin, in.margin);
-    in.bestCost.resize(width, height);
-    downloadImage(asConst(bestCost), in.bestCost.view(), stream);
-    download(difference, in.leftRightDifference);
-    download(distance, in.lidarDistance);
-    download(texture, in.texture);
-    download(saturated, in.saturated);
-    download(range, in.disparityRange);
-    download(confidence, confidence_);
+    download(margin, inputs.margin);
+    inputs.bestCost.resize(width, height);
+    downloadImage(asConst(bestCost), inputs.bestCost.view(), stream);
+    download(difference, inputs.leftRightDifference);
+    download(distance, inputs.lidarDistance);
+    download(texture, inputs.texture);
+    download(saturated, inputs.saturated);
+    download(range, inputs.disparityRange);
+    download(confidence, out.confidence);
   }
   dev.mark(kDownloaded);
   LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(stream));
 
   // Kernel time per stage (CUDA events). The costs are computed inside the aggregation, so
   // censusCost, lidarCost's volume and fuseCosts have no time of their own.
-  timings_.transfers = dev.ms(kStart, kUploaded) + dev.ms(kConfidence, kDownloaded);
-  timings_.census = dev.ms(kUploaded, kCensus);
-  timings_.lidarCost = dev.ms(kCensus, kLidar);
-  timings_.aggregatePaths = dev.ms(kLidar, kAggregated);
-  timings_.selectDisparity = dev.ms(kAggregated, kSelected);
-  timings_.leftRightCheck = dev.ms(kSelected, kChecked);
-  timings_.medianFilter = dev.ms(kChecked, kFiltered);
-  timings_.confidence = dev.ms(kFiltered, kConfidence);
+  out.timings.transfers = dev.ms(kStart, kUploaded) + dev.ms(kConfidence, kDownloaded);
+  out.timings.census = dev.ms(kUploaded, kCensus);
+  out.timings.lidarCost = dev.ms(kCensus, kLidar);
+  out.timings.aggregatePaths = dev.ms(kLidar, kAggregated);
+  out.timings.selectDisparity = dev.ms(kAggregated, kSelected);
+  out.timings.leftRightCheck = dev.ms(kSelected, kChecked);
+  out.timings.medianFilter = dev.ms(kChecked, kFiltered);
+  out.timings.confidence = dev.ms(kFiltered, kConfidence);
 }
 
 namespace {
@@ -380,46 +369,23 @@ GrayImageView downloaded(const GrayImageView& device, Image<std::uint8_t>& host8
 
 }  // namespace
 
-void CudaMatcher::runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
-                              MemorySpace disparitySpace) {
-  const int width = disparity.width;
-  const int height = disparity.height;
-  HostCopies& host = *hostCopies_;
-  // The LiDAR samples come back to be validated and bucketed by LidarPoints, which names a
-  // sample outside the image or behind the camera (12 bytes a point).
-  LidarPoints points;
-  if (mode != MatchMode::StereoOnly) {
+void CudaMatcher::copyToHost(const DeviceFrame& frame, bool images, DeviceFrameCopy& host) {
+  if (frame.lidar != nullptr && frame.lidarCount > 0) {
     host.samples.resize(frame.lidarCount);
     LIDAR_SGM_CUDA_CHECK(cudaMemcpy(host.samples.data(), frame.lidar, frame.lidarCount * sizeof(LidarSample),
                                     cudaMemcpyDeviceToHost));
-    points = LidarPoints(width, height, host.samples);
   }
-  const LidarPoints* lidar = mode == MatchMode::StereoOnly ? nullptr : &points;
-  const bool outputOnDevice = disparitySpace == MemorySpace::Device;
+  if (images) {
+    host.left = downloaded(frame.left, host.left8, host.left16);
+    host.right = downloaded(frame.right, host.right8, host.right16);
+  }
+}
 
-  if (params_.scale != 1.0f) {
-    // The half-scale resampling is the core's, on the host: match host copies.
-    const GrayImageView left = mode == MatchMode::LidarOnly ? GrayImageView()
-                                                            : downloaded(frame.left, host.left8, host.left16);
-    const GrayImageView right = downloaded(frame.right, host.right8, host.right16);
-    host.disparity.resize(width, height);
-    compute(left, right, lidar, host.disparity.view());
-    if (outputOnDevice) {
-      LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(disparity.data, static_cast<std::size_t>(disparity.stride) * sizeof(std::int16_t),
-                                        host.disparity.data(), static_cast<std::size_t>(width) * sizeof(std::int16_t),
-                                        static_cast<std::size_t>(width) * sizeof(std::int16_t),
-                                        static_cast<std::size_t>(height), cudaMemcpyHostToDevice));
-    } else {
-      for (int y = 0; y < height; ++y) {
-        std::copy(host.disparity.data() + static_cast<std::size_t>(y) * width,
-                  host.disparity.data() + static_cast<std::size_t>(y + 1) * width, disparity.row(y));
-      }
-    }
-    return;
-  }
-  // The confidence, too, is computed on the device (computesConfidence()).
-  runStages(params_, frame.left, frame.right, nullptr, 0, lidar, mode, disparity, /*inputsOnDevice=*/true,
-            outputOnDevice);
+void CudaMatcher::copyToDevice(ImageView<const std::int16_t> host, ImageView<std::int16_t> device) {
+  const std::size_t rowBytes = static_cast<std::size_t>(host.width) * sizeof(std::int16_t);
+  LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(device.data, static_cast<std::size_t>(device.stride) * sizeof(std::int16_t),
+                                    host.data, static_cast<std::size_t>(host.stride) * sizeof(std::int16_t), rowBytes,
+                                    static_cast<std::size_t>(host.height), cudaMemcpyHostToDevice));
 }
 
 }  // namespace cuda
