@@ -21,7 +21,7 @@ class CudaMatcher final : public MatcherBackend {
   /// The confidence's core part runs on the device too (confidence.cu).
   bool computesConfidence() const override { return true; }
 
-  // Frames in device memory (runStages with the inputs on the device).
+  // Frames in device memory (device_frame.cpp, and runStages with the inputs on the device).
   bool readsDeviceMemory() const override { return true; }
   void copyToHost(const DeviceFrame& frame, bool images, DeviceFrameCopy& host) override;
   void copyToDevice(ImageView<const std::int16_t> host, ImageView<std::int16_t> device) override;
@@ -29,9 +29,22 @@ class CudaMatcher final : public MatcherBackend {
                    MemorySpace disparitySpace, FrameResults& out) override;
 
  private:
-  struct Device;  // device buffers, stream and events (no CUDA type in this header)
+  struct Device;       // device buffers, stream and events (no CUDA type in this header)
+  struct FrameImages;  // one frame's device images and volumes, as the stages hand them on
   void runStages(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity, FrameResults& out,
                  bool inputsOnDevice, bool outputOnDevice);
+  void reserveImages(const FramePlan& plan, FrameImages& frame);
+  void uploadCameras(const FramePlan& plan, const FrameInputs& in, bool inputsOnDevice, FrameImages& frame);
+  void uploadLidar(const FramePlan& plan, const LidarPoints& lidar, FrameImages& frame);
+  void censusTransforms(const FramePlan& plan, FrameImages& frame);
+  void aggregatePaths(const FramePlan& plan, FrameImages& frame);
+  void selectDisparity(const FramePlan& plan, FrameImages& frame);
+  void leftRightCheck(const FramePlan& plan, FrameImages& frame);
+  void confidence(const FramePlan& plan, FrameImages& frame);
+  void downloadResults(const FramePlan& plan, const FrameImages& frame, ImageView<std::int16_t> disparity,
+                       bool outputOnDevice, FrameResults& out);
+  void recordTimings(StageTimings& timings) const;
+
   std::unique_ptr<Device> device_;
 };
 
