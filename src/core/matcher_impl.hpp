@@ -20,6 +20,7 @@ struct Matcher::Impl {
   MatchMode lastMode = MatchMode::StereoOnly;
   bool lastUpCamera = false;
   double rescaleMs = 0;
+  DeviceFrameCopy deviceCopy;  ///< computeOnDevice's host copies
 
   /// Clears what the last frame left that this one may not overwrite.
   void beginFrame();
@@ -27,12 +28,10 @@ struct Matcher::Impl {
   /// resampling of the inputs and of the results.
   void run(const FramePlan& plan, const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
            const LidarPoints* lidar, ImageView<std::int16_t> disparity);
-  /// The backend, then the confidence's core part, on inputs at the plan's size.
-  void runBackend(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity);
-
-  DeviceFrameCopy deviceCopy;
 
  private:
+  /// The backend, then the confidence's core part, on inputs at the plan's size.
+  void runBackend(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity);
   void runAtHalfScale(const FramePlan& plan, const GrayImageView& left, const GrayImageView& right,
                       const VerticalView& vertical, const LidarPoints* lidar, ImageView<std::int16_t> disparity);
   void computeConfidence(const FramePlan& plan, const GrayImageView& left, ImageView<const std::int16_t> disparity);
