@@ -6,23 +6,29 @@
 #include <string>
 #include <vector>
 
+#include "core/backend.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 
 namespace lidar_sgm {
 namespace detail {
 
-using MatcherFactory = std::unique_ptr<Matcher> (*)(const Parameters&);
+/// Creates the backend; throws std::runtime_error when it cannot run here after all.
+using BackendFactory = std::unique_ptr<MatcherBackend> (*)();
 /// "" when the backend can run on this machine, else why not (a GPU backend without a device).
 using AvailabilityProbe = std::string (*)();
 
 struct BackendEntry {
   Backend backend;
-  MatcherFactory create;
+  BackendFactory create;
   AvailabilityProbe unavailable = nullptr;  ///< null: always runs where it is built
 };
 
 /// Every backend of this build, fastest first: Backend::Auto is the first that can run here.
 const std::vector<BackendEntry>& builtinBackends();
+
+/// The backend `backend` stands for (Auto: resolve()), created; std::runtime_error naming the
+/// backend when it is not built in or cannot run here.
+std::unique_ptr<MatcherBackend> createBackend(Backend backend);
 
 }  // namespace detail
 }  // namespace lidar_sgm

@@ -84,7 +84,7 @@ Image<T> imageOf(Size s, int maxValue, std::mt19937& engine) {
   return image;
 }
 
-// The core's inputs and confidence of a frame, as Matcher::computeConfidence computes them.
+// The core's inputs and confidence of a frame, as the Matcher computes them for cpu_ref.
 void coreConfidence(const GrayImageView& image, const Image<std::uint8_t>& support, const Image<std::int16_t>& disparity,
                     MatchMode mode, int paths, ConfidenceInputs& in, Image<std::uint8_t>& confidence) {
   const int W = disparity.width();

@@ -12,8 +12,6 @@
 
 namespace lidar_sgm {
 
-struct ConfidenceScratch;
-
 enum class Backend {
   Auto,    ///< the fastest backend built into this library that can run here (cuda > cpu > cpu_ref)
   CpuRef,  ///< naive reference loops, single-threaded: the specification
@@ -105,21 +103,22 @@ struct DeviceFrame {
 ///   matcher->compute(left, right, &lidar, disparity.view());  // x16 fixed point, kInvalidDisparity
 /// @endcode
 ///
-/// A matcher keeps its buffers between frames of the same size. Not thread-safe: use one
-/// matcher per thread.
-class Matcher {
+/// A facade: the backend behind it and every buffer it keeps between frames of the same size are
+/// private to the library. Not thread-safe: use one matcher per thread.
+class Matcher final {
  public:
   /// Throws std::invalid_argument for invalid parameters (the message names the parameter and
   /// its allowed range) and std::runtime_error for a backend that is not built in or cannot run
   /// here (cuda without a device), saying which.
   static std::unique_ptr<Matcher> create(Backend backend, const Parameters& params = {});
 
-  virtual ~Matcher() = default;
+  ~Matcher();
   Matcher(const Matcher&) = delete;
   Matcher& operator=(const Matcher&) = delete;
 
-  virtual Backend backend() const = 0;
-  const Parameters& parameters() const { return params_; }
+  /// The backend this matcher runs on (never Auto).
+  Backend backend() const;
+  const Parameters& parameters() const;
   /// Validates first; the matcher is unchanged when `params` is rejected.
   void setParameters(const Parameters& params);
 
@@ -143,84 +142,33 @@ class Matcher {
   /// The cuda backend: compute() on a frame already in GPU memory, the disparity written to
   /// `disparitySpace` (Device: `disparity` holds a device pointer and nothing is copied back).
   /// Results equal compute()'s on the same pixels. The LiDAR samples are read back (12 bytes a
-  /// point) to be validated and bucketed as LidarPoints does; at scale 0.5, and for the confidence
-  /// (when parameters().confidence is set), the left image and the disparity are read back too,
-  /// since the half-scale resampling and the confidence's core part run on the host. Other
-  /// backends throw std::runtime_error.
+  /// point) to be validated and bucketed as LidarPoints does; at scale 0.5 the images are read
+  /// back too and the disparity is copied back, since the half-scale resampling runs on the host.
+  /// Other backends throw std::runtime_error.
   void computeOnDevice(const DeviceFrame& frame, ImageView<std::int16_t> disparity,
                        MemorySpace disparitySpace = MemorySpace::Host);
 
-  MatchMode lastMode() const { return lastMode_; }
+  MatchMode lastMode() const;
   /// Whether the last frame was matched with the up camera too (Triple-SGM).
-  bool lastUsedUpCamera() const { return lastUpCamera_; }
-  const StageTimings& lastTimings() const { return timings_; }
+  bool lastUsedUpCamera() const;
+  const StageTimings& lastTimings() const;
   /// 1 where a LiDAR point touched the pixel's 3x3 neighbourhood in the last frame (at the
   /// frame's full resolution, also when it was matched at scale 0.5).
-  ImageView<const std::uint8_t> lidarSupport() const { return support_.view(); }
+  ImageView<const std::uint8_t> lidarSupport() const;
   /// Per-pixel confidence of the last frame (parameters().confidence): 0..255, close to 255 times
   /// the probability that the pixel's disparity is correct (core/confidence.hpp); 0 where the
   /// disparity is invalid. At the frame's full resolution. Empty when confidence is off.
-  ImageView<const std::uint8_t> confidence() const { return confidence_.view(); }
+  ImageView<const std::uint8_t> confidence() const;
   /// The inputs the confidence was computed from, at the size the frame was matched at.
-  const ConfidenceInputs& confidenceInputs() const { return confidenceInputs_; }
+  const ConfidenceInputs& confidenceInputs() const;
   /// Milliseconds spent scaling the inputs down and the disparity up in the last frame
   /// (0 at scale 1); not part of lastTimings().total().
-  double lastRescaleMs() const { return rescaleMs_; }
-
- protected:
-  explicit Matcher(const Parameters& params);
-
-  /// Runs every stage on validated inputs (sizes agree, mode decided) at the size of the
-  /// inputs. `params` are the parameters to match with: params_ at scale 1, the half-scale
-  /// search range at scale 0.5 (the backend never rescales). Writes support_ at that size.
-  virtual void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                   const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) = 0;
-  /// Triple-SGM: run() with the up camera (validated: same size and depth as left, mode StereoOnly
-  /// or Fused). `ratio16` = baselineRatio16(b_up / b). The default throws std::runtime_error: a
-  /// backend that has no Triple-SGM stages says so instead of silently ignoring the camera.
-  virtual void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                               const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                               ImageView<std::int16_t> disparity);
-
-  /// computeOnDevice after validation (the mode decided, timings reset); the default throws
-  /// std::runtime_error: only a GPU backend takes device memory.
-  virtual void runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
-                           MemorySpace disparitySpace);
-  /// Whether run() computes the whole confidence itself (confidence_ and every input at the
-  /// matched size), so that the core does not: the cuda backend, which keeps the frame on the GPU.
-  virtual bool computesConfidence() const { return false; }
-  /// The core's part of the confidence, after the backend ran on `left` (host, matched size).
-  void computeConfidence(const GrayImageView& left, MatchMode mode, ImageView<const std::int16_t> disparity);
-  void recordFrame(MatchMode mode, bool upCamera) {
-    lastMode_ = mode;
-    lastUpCamera_ = upCamera;
-  }
-
-  Parameters params_;
-  StageTimings timings_;
-  Image<std::uint8_t> support_;
-  /// The backend fills margin and leftRightDifference (not in LiDAR-only mode) when
-  /// params.confidence is set; the core the rest.
-  ConfidenceInputs confidenceInputs_;
-  Image<std::uint8_t> confidence_;
+  double lastRescaleMs() const;
 
  private:
-  /// Runs the backend on (possibly half-scale) inputs.
-  void dispatch(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
-                const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
-  void computeAtHalfScale(const GrayImageView& left, const GrayImageView& right, const VerticalView& vertical,
-                          const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
-
-  Image<std::uint8_t> halfConfidence_;
-  std::shared_ptr<ConfidenceScratch> scratch_;  ///< row buffers of the core's confidence inputs
-  MatchMode lastMode_ = MatchMode::StereoOnly;
-  bool lastUpCamera_ = false;
-  double rescaleMs_ = 0;
-  // Half-scale buffers, kept between frames like the backends' own.
-  Image<std::uint8_t> half8_[3];
-  Image<std::uint16_t> half16_[3];
-  Image<std::int16_t> halfDisparity_;
-  Image<std::uint8_t> halfSupport_;
+  struct Impl;  // the backend, the frame's results and the core's buffers (src/core/matcher_impl.hpp)
+  explicit Matcher(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace lidar_sgm

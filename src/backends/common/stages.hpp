@@ -10,7 +10,7 @@
 
 #include "backends/common/cost_volume.hpp"
 #include "backends/common/host_device.hpp"
-#include "core/baseline_ratio.hpp"
+#include "core/fixed_point.hpp"
 #include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "backends/common/lidar_cost_table.hpp"
@@ -25,9 +25,6 @@ constexpr int kMaxCensusCost = 62;
 /// C_S where the right image has no counterpart (x - d outside it): the expected Hamming
 /// distance of two unrelated census strings, i.e. "no information", favouring no disparity.
 constexpr int kNoCounterpartCensusCost = kMaxCensusCost / 2;
-
-/// Eq. 5 in fixed point: alpha as an integer weight out of 256.
-inline int alphaWeight(float alpha) { return static_cast<int>(alpha * 256.0f + 0.5f); }
 
 /// Triple-SGM: the vertical disparity [rows] of the absolute horizontal disparity `d`,
 /// dv = (d * ratio16 + 32768) >> 16, i.e. d * b_up / b rounded half up (floor, also for d < 0).

@@ -1,7 +1,8 @@
 #pragma once
 // Row kernels of the fast CPU backend, shared by its whole-volume stages (cpu_stages.hpp) and
-// its streaming matcher (cpu_matcher.cpp). Each is dispatched once per row (Highway picks the
-// widest instruction set the CPU has), never per pixel, so dispatch costs nothing measurable.
+// its streaming matcher (row_costs.cpp, sweeps.cpp). Each is dispatched once per row (Highway
+// picks the widest instruction set the CPU has), never per pixel, so dispatch costs nothing
+// measurable.
 //
 // Layouts. A cost row holds D = numDisparities bytes per pixel (disparity innermost, as the
 // volumes). A path row holds pathSlot(D) = D + 2 elements per pixel: [0] and [D + 1] are

@@ -1,8 +1,10 @@
+// The cpu backend's frame: the census images and the LiDAR's pixels before the sweeps
+// (sweeps.cpp), the left-right check, the median filter and the confidence after them.
 #include "backends/cpu/cpu_matcher.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
+#include <utility>
 
 #include "backends/common/lidar_weights.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
@@ -11,238 +13,156 @@
 
 namespace lidar_sgm {
 
-std::unique_ptr<Matcher> createCpuMatcher(const Parameters& params) {
-  return std::make_unique<cpu::CpuMatcher>(params);
-}
+std::unique_ptr<MatcherBackend> createCpuMatcher() { return std::make_unique<cpu::CpuMatcher>(); }
 
 namespace cpu {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double msBetween(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-// The paths of each sweep as (dx, dy): the previous pixel on the path is (x - dx, y - dy).
-struct Step {
-  int dx;
-};
-constexpr Step kUpward[3] = {{0}, {1}, {-1}};    // (0,-1), then with 8 paths (1,-1), (-1,-1)
-constexpr Step kDownward[3] = {{0}, {1}, {-1}};  // (0,1), then with 8 paths (1,1), (-1,1)
 
 template <typename T>
 void resizeKeep(std::vector<T>& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 
-}  // namespace
-
-struct CpuMatcher::Frame {
-  Parameters params;
-  MatchMode mode = MatchMode::StereoOnly;
-  GrayImageView left;  // empty in LiDAR-only mode (the confidence reads no image there)
-  const LidarPoints* lidar = nullptr;
-  bool up = false;
-  int ratio16 = 0;
-  int width = 0;
-  int height = 0;
-  int D = 0;
-  int scale = 1;         // census cost scale: 2 for the 31-bit centre-symmetric census
-  int alphaWeight = 0;
-  bool adaptiveAlpha = false;  // fused mode: per-pixel weights (lidarWeights_), else alphaWeight everywhere
-  int verticalPaths = 1;  // per sweep: 1 with 4 paths, 3 with 8
-  bool lrCheck = false;
-  bool confidence = false;    // the peak-ratio margin (core/confidence.hpp)
-  bool confidenceLr = false;  // ... and the left-right difference (not in LiDAR-only mode)
-  int threads = 1;
-  bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
-  int planePad = 0;            // the right census planes' layout (census_cost.cpp)
-  std::size_t planeStride = 0;
-};
-
-struct CpuMatcher::Worker {
-  std::vector<std::uint8_t> stereo;    // C_S (fused mode)
-  std::vector<std::uint8_t> lidar;     // C_L (fused mode)
-  std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
-  std::vector<std::uint8_t> touched;   // per pixel: whether a LiDAR point touches it
-  std::vector<std::uint16_t> total;      // S of one pixel (the selection needs no more)
-  std::vector<std::uint8_t> rightward;  // L of the left-to-right path along one row (slots, bytes)
-  std::vector<std::uint8_t> leftward;   // ... and of the right-to-left path
-  std::vector<std::uint16_t> rightScratch;  // the right view's winners of a row
-  double censusCostMs = 0;
-  double verticalCostMs = 0;
-  double lidarCostMs = 0;
-  double fuseMs = 0;
-  double selectMs = 0;
-};
-
-void CpuMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                     const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
-  runWithUpCamera(params, left, right, GrayImageView(), 0, lidar, mode, disparity);
+// The largest matching cost of the mode, and so the largest path cost L <= C + P2 (Eq. 1).
+int largestCost(const FramePlan& plan) {
+  switch (plan.mode) {
+    case MatchMode::StereoOnly: return kMaxCensusCost;
+    case MatchMode::LidarOnly: return plan.params.lidarCostCap;
+    case MatchMode::Fused: break;
+  }
+  return std::max(kMaxCensusCost, plan.params.lidarCostCap);
 }
 
-void CpuMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                                 const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                                 ImageView<std::int16_t> disparity) {
-  const auto start = Clock::now();
-  Frame f;
-  f.params = params;
-  f.mode = mode;
-  if (mode != MatchMode::LidarOnly) f.left = left;
-  f.lidar = mode == MatchMode::StereoOnly ? nullptr : lidar;
-  f.up = !up.empty() && mode != MatchMode::LidarOnly;
-  f.ratio16 = ratio16;
-  f.width = disparity.width;
-  f.height = disparity.height;
-  f.D = params.numDisparities;
-  f.scale = params.censusType == CensusType::Census9x7 ? 1 : 2;
-  f.alphaWeight = alphaWeight(params.alpha);
-  f.adaptiveAlpha = mode == MatchMode::Fused && params.alphaMode == AlphaMode::Adaptive;
-  f.verticalPaths = params.paths == 8 ? 3 : 1;
-  f.threads = effectiveThreads(params);
-  // The largest matching cost, and so the largest path cost L <= C + P2 (Eq. 1).
-  const int maxCost = mode == MatchMode::StereoOnly ? kMaxCensusCost
-                      : mode == MatchMode::LidarOnly ? params.lidarCostCap
-                                                     : std::max(kMaxCensusCost, params.lidarCostCap);
-  f.paths8 = pathCostsFit8Bits(maxCost, params.P2);
-  f.lrCheck = mode == MatchMode::StereoOnly ? params.lrCheck
-                                            : mode == MatchMode::Fused && params.lrCheck && params.lrCheckWithLidar;
-  f.confidence = params.confidence;
-  f.confidenceLr = params.confidence && mode != MatchMode::LidarOnly;
+}  // namespace
 
-  if (mode != MatchMode::LidarOnly) {
-    const auto census = [&](const GrayImageView& image, Image<std::uint64_t>& out) {
-      out.resize(image.width(), image.height());
-      if (!image.gray8.empty()) {
-        censusTransform(image.gray8, params.censusType, out.view(), f.threads);
-      } else {
-        censusTransform(image.gray16, params.censusType, out.view(), f.threads);
-      }
-    };
-    census(left, leftCensus_);
-    census(right, rightCensus_);
-    if (f.up) census(up, upCensus_);
-    f.planePad = censusPlanePad(params.minDisparity, f.D);
-    f.planeStride = static_cast<std::size_t>(f.width) + 2 * static_cast<std::size_t>(f.planePad);
-    resizeKeep(rightPlanes_, f.planeStride * 8 * f.height);
-    parallelRanges(f.height, f.threads, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) {
-        censusPlanes(rightCensus_.view().row(y), f.width, f.planePad,
-                     rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride, f.planeStride);
-      }
-    });
-  }
-  if (mode != MatchMode::StereoOnly && (tableSigma_ != params.sigma || tableCap_ != params.lidarCostCap)) {
-    table_ = LidarCostTable(params.sigma, params.lidarCostCap);
-    tableSigma_ = params.sigma;
-    tableCap_ = params.lidarCostCap;
-  }
-  if (mode != MatchMode::StereoOnly) {
-    touched_.resize(f.width, f.height);
-    parallelRanges(f.height, f.threads, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) lidarTouchedRow(*lidar, y, touched_.view().row(y));
-    });
-  }
-  if (f.adaptiveAlpha) {
-    // Shared with every backend (backends/common): the same integer weights as cpu_ref's.
-    lidarWeights_.resize(f.width, f.height);
-    lidarWeights(*lidar, params, lidarWeights_.view());
-  }
-  timings_.census = msBetween(start, Clock::now());
+void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                     FrameResults& out) {
+  const auto start = Clock::now();
+  Frame f(plan, out);
+  f.left = in.left;
+  f.lidar = in.lidar;
+  f.threads = effectiveThreads(plan.params);
+  f.verticalPaths = plan.params.paths == 8 ? 3 : 1;
+  f.paths8 = pathCostsFit8Bits(largestCost(plan), plan.params.P2);
+  f.rowSlots = static_cast<std::size_t>(plan.width) * pathSlot(plan.D);
+  if (plan.useCameras()) censusImages(f, in);
+  if (plan.useLidar) lidarPixels(f);
+  out.timings.census = msSince(start);
   runStages(f, disparity);
 }
 
-void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* cost, Worker& w) {
-  const auto n = static_cast<std::size_t>(x1 - x0) * f.D;
-  const Parameters& p = f.params;
-  auto t0 = Clock::now();
-  const auto lap = [&t0](double& ms) {
-    const auto t1 = Clock::now();
-    ms += msBetween(t0, t1);
-    t0 = t1;
-  };
-  // The LiDAR cost, streamed from the points around each pixel (no C_L volume). Most pixels
-  // have no point around them: C_L = 0 there, without looking for points.
-  std::uint8_t* lidar = f.mode == MatchMode::LidarOnly ? cost : w.lidar.data();
-  if (f.mode != MatchMode::StereoOnly) {
-    std::uint8_t* support = support_.view().row(y);
-    const std::uint8_t* touched = touched_.view().row(y);
-    for (int x = x0; x < x1; ++x) {
-      std::uint8_t* c = lidar + static_cast<std::size_t>(x - x0) * f.D;
-      if (touched[x] != 0) {
-        lidarCostPixel(*f.lidar, table_, x, y, p.minDisparity, f.D, c);
-      } else if (f.mode == MatchMode::LidarOnly || f.up) {
-        std::memset(c, 0, static_cast<std::size_t>(f.D));
-      }
-      support[x] = touched[x];
-    }
-    lap(w.lidarCostMs);
-  }
-  if (f.mode == MatchMode::LidarOnly) return;
-  const std::uint16_t* weights = f.adaptiveAlpha ? lidarWeights_.view().row(y) : nullptr;
-  const std::uint64_t* leftRow = leftCensus_.view().row(y);
-  const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
-  if (!f.up) {
-    // C_S, fused per pixel while it is in the L1 cache.
-    if (f.mode == MatchMode::Fused) {
-      censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity,
-                         f.D, lidar, touched_.view().row(y), weights, f.alphaWeight, p.stereoCostWithoutLidar, cost);
+// The census images, and the right one as byte planes (census_cost.cpp) for the cost rows.
+void CpuMatcher::censusImages(Frame& f, const FrameInputs& in) {
+  const FramePlan& plan = f.plan;
+  const auto census = [&](const GrayImageView& image, Image<std::uint64_t>& out) {
+    out.resize(image.width(), image.height());
+    if (!image.gray8.empty()) {
+      censusTransform(image.gray8, plan.params.censusType, out.view(), f.threads);
     } else {
-      censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity, f.D,
-                    cost);
+      censusTransform(image.gray16, plan.params.censusType, out.view(), f.threads);
     }
-    lap(w.censusCostMs);
-    return;
-  }
-  // Triple-SGM: the camera cost C_S3 = (C_S + C_V + 1) >> 1 takes C_S's place in Eq. 5.
-  std::uint8_t* camera = f.mode == MatchMode::Fused ? w.stereo.data() : cost;
-  censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, f.width, x0, x1, p.minDisparity, f.D, camera);
-  lap(w.censusCostMs);
-  verticalCensusCostRow(leftRow, upCensus_.view(), y, x0, x1, f.ratio16, p.minDisparity, f.D, f.scale,
-                        w.vertical.data());
-  combineCameraCostRow(camera, w.vertical.data(), n, camera);
-  lap(w.verticalCostMs);
-  if (f.mode != MatchMode::Fused) return;
-  if (weights == nullptr) {
-    fuseCostRow(lidar, camera, n, f.alphaWeight, cost);
-  } else {
-    for (int x = x0; x < x1; ++x) {
-      const auto offset = static_cast<std::size_t>(x - x0) * f.D;
-      fuseCostRow(lidar + offset, camera + offset, static_cast<std::size_t>(f.D), weights[x], cost + offset);
+  };
+  census(in.left, leftCensus_);
+  census(in.right, rightCensus_);
+  if (plan.upCamera()) census(in.up, upCensus_);
+  f.planePad = censusPlanePad(plan.minDisparity, plan.D);
+  f.planeStride = static_cast<std::size_t>(plan.width) + 2 * static_cast<std::size_t>(f.planePad);
+  resizeKeep(rightPlanes_, f.planeStride * 8 * plan.height);
+  parallelRanges(plan.height, f.threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      censusPlanes(rightCensus_.view().row(y), plan.width, f.planePad,
+                   rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride, f.planeStride);
     }
+  });
+}
+
+// What the cost rows need of the LiDAR besides its points: the cost table, the pixels a point
+// touches (most have none, and their C_L is 0 without a search) and the adaptive weights.
+void CpuMatcher::lidarPixels(const Frame& f) {
+  const FramePlan& plan = f.plan;
+  const Parameters& p = plan.params;
+  if (tableSigma_ != p.sigma || tableCap_ != p.lidarCostCap) {
+    table_ = LidarCostTable(p.sigma, p.lidarCostCap);
+    tableSigma_ = p.sigma;
+    tableCap_ = p.lidarCostCap;
   }
-  if (p.stereoCostWithoutLidar) {
-    const std::uint8_t* touched = touched_.view().row(y);
-    for (int x = x0; x < x1; ++x) {
-      if (touched[x] != 0) continue;
-      const auto offset = static_cast<std::size_t>(x - x0) * f.D;
-      std::memcpy(cost + offset, camera + offset, static_cast<std::size_t>(f.D));
-    }
+  touched_.resize(plan.width, plan.height);
+  parallelRanges(plan.height, f.threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) lidarTouchedRow(*f.lidar, y, touched_.view().row(y));
+  });
+  if (plan.adaptiveAlpha) {
+    // Shared with every backend (backends/common): the same integer weights as cpu_ref's.
+    lidarWeights_.resize(plan.width, plan.height);
+    lidarWeights(*f.lidar, p, lidarWeights_.view());
   }
-  lap(w.fuseMs);
 }
 
 void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
-  const int W = f.width;
-  const int H = f.height;
-  const std::size_t slot = static_cast<std::size_t>(pathSlot(f.D));
-  support_.resize(W, H);
-  if (f.mode == MatchMode::StereoOnly) support_.fill(0);
+  const FramePlan& plan = f.plan;
+  StageTimings& timings = f.out.timings;
+  f.out.support.resize(plan.width, plan.height);
+  if (!plan.useLidar) f.out.support.fill(0);
+  // The sweeps split the columns: no more threads than columns.
+  Frame frame = f;
+  frame.threads = std::max(1, std::min(f.threads, plan.width));
+  prepareBuffers(frame);
+  aggregateAndSelect(frame);
 
-  // Buffers, grown only (no allocation per frame after the first of a size).
-  cost_.reserve(static_cast<std::size_t>(W) * H * f.D);
-  const std::size_t rowSlots = static_cast<std::size_t>(W) * slot;
+  auto t0 = Clock::now();
+  if (plan.lrCheck) {
+    leftRightCheck(frame);
+    timings.leftRightCheck = msSince(t0);
+    t0 = Clock::now();
+  }
+  medianFilter(rawDisparity_.view(), plan.params.medianSize, disparity, frame.threads);
+  timings.medianFilter = msSince(t0);
+  if (plan.confidence) {
+    t0 = Clock::now();
+    confidenceStage(f, disparity);
+    timings.confidence = msSince(t0);
+  }
+}
+
+void CpuMatcher::prepareBuffers(const Frame& f) {
+  const FramePlan& plan = f.plan;
+  const int W = plan.width;
+  const int H = plan.height;
+  cost_.reserve(static_cast<std::size_t>(W) * H * plan.D);
+  bool newLayout = false;
+  preparePathRows(f, newLayout);
+  prepareWorkers(f, newLayout);
+  rawDisparity_.resize(W, H);
+  bestIndex_.resize(W, H);
+  if (plan.lrCheck || plan.confidenceLr) rightIndex_.resize(W, H);
+  ConfidenceInputs& confidence = f.out.confidenceInputs;
+  if (plan.confidence) {
+    confidence.margin.resize(W, H);
+    confidence.bestCost.resize(W, H);
+  }
+  if (plan.confidenceLr) confidence.leftRightDifference.resize(W, H);
+}
+
+// The path rows of both sweeps, grown only (no allocation per frame after the first of a size).
+// They are filled with sentinels (all ones) once per layout: the kernels never write a slot's
+// two ends.
+void CpuMatcher::preparePathRows(const Frame& f, bool& newLayout) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
   const std::size_t element = f.paths8 ? 1 : 2;
-  const std::size_t rowBytes = rowSlots * element;
-  const std::size_t chunkRows = 2 * static_cast<std::size_t>(kChunkRows);  // two parities
-  // Path rows are filled with sentinels (all ones) once per layout: the kernels never write a
-  // slot's two ends.
-  const std::size_t layout = (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.D);
-  const bool newLayout = layout != pathLayout_;
+  const std::size_t rowBytes = f.rowSlots * element;
+  const std::size_t layout =
+      (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.plan.D);
+  newLayout = layout != pathLayout_;
   pathLayout_ = layout;
-  // Per chunk: each vertical path downward and upward (2 * verticalPaths rows of kChunkRows).
-  const std::size_t chunkPathRows = chunkRows * 2 * static_cast<std::size_t>(f.verticalPaths);
+  // Per chunk: each vertical path downward and upward (2 * verticalPaths rows of kChunkRows),
+  // in two parities.
+  const std::size_t chunkPathRows = 2 * static_cast<std::size_t>(kChunkRows) * 2 * f.verticalPaths;
   const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows) * f.verticalPaths;
   if (newLayout) pathRows_.assign(6 * rowBytes, 0xFF);
   if (newLayout || chunkPaths_.size() < chunkPathRows * rowBytes) chunkPaths_.assign(chunkPathRows * rowBytes, 0xFF);
@@ -250,77 +170,46 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   resizeKeep(pathMins_, 6 * static_cast<std::size_t>(W));
   resizeKeep(chunkMins_, chunkPathRows * W);
   resizeKeep(checkpointMins_, checkpoints * W);
-  const int threads = std::max(1, std::min(f.threads, W));
-  workers_.resize(static_cast<std::size_t>(threads));
-  const std::size_t partMax = (static_cast<std::size_t>(W) / threads + 1) * f.D;
+}
+
+void CpuMatcher::prepareWorkers(const Frame& f, bool newLayout) {
+  const FramePlan& plan = f.plan;
+  const int W = plan.width;
+  const std::size_t rowBytes = f.rowSlots * (f.paths8 ? 1 : 2);
+  workers_.resize(static_cast<std::size_t>(f.threads));
+  const std::size_t partMax = (static_cast<std::size_t>(W) / f.threads + 1) * plan.D;
   for (Worker& w : workers_) {
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);
-    if (f.up) resizeKeep(w.vertical, partMax);
-    resizeKeep(w.total, static_cast<std::size_t>(f.D));
-    if (f.lrCheck || f.confidenceLr) resizeKeep(w.rightScratch, rightIndexScratchSize(W, f.D, f.params.minDisparity));
+    if (plan.upCamera()) resizeKeep(w.vertical, partMax);
+    resizeKeep(w.total, static_cast<std::size_t>(plan.D));
+    if (plan.lrCheck || plan.confidenceLr) {
+      resizeKeep(w.rightScratch, rightIndexScratchSize(W, plan.D, plan.minDisparity));
+    }
     if (newLayout || w.rightward.size() != rowBytes) w.rightward.assign(rowBytes, 0xFF);
     if (newLayout || w.leftward.size() != rowBytes) w.leftward.assign(rowBytes, 0xFF);
     w.censusCostMs = w.verticalCostMs = w.lidarCostMs = w.fuseMs = w.selectMs = 0;
   }
-  rawDisparity_.resize(W, H);
-  bestIndex_.resize(W, H);
-  if (f.lrCheck || f.confidenceLr) rightIndex_.resize(W, H);
-  if (f.confidence) {
-    confidenceInputs_.margin.resize(W, H);
-    confidenceInputs_.bestCost.resize(W, H);
-  }
-  if (f.confidenceLr) confidenceInputs_.leftRightDifference.resize(W, H);
+}
 
-  Frame frame = f;
-  frame.threads = threads;
-  auto t0 = Clock::now();
-  if (f.paths8) {
-    sweepUp<std::uint8_t>(frame);
-    sweepDown<std::uint8_t>(frame);
-  } else {
-    sweepUp<std::uint16_t>(frame);
-    sweepDown<std::uint16_t>(frame);
+void CpuMatcher::leftRightCheck(const Frame& f) {
+  const FramePlan& plan = f.plan;
+  ImageView<const std::uint8_t> covered;
+  if (plan.lrCheckTrustsLidar) {
+    coverage_.resize(plan.width, plan.height);
+    lidarCoverage(*f.lidar, plan.params.lidarCoverageRows, coverage_.view(), f.threads);
+    covered = coverage_.view();
   }
-  const double sweeps = msBetween(t0, Clock::now());
-  // Worker 0's clocks split the sweeps' wall time into the stages it streamed.
-  const Worker& w0 = workers_[0];
-  timings_.censusCost = w0.censusCostMs;
-  timings_.verticalCensusCost = w0.verticalCostMs;
-  timings_.lidarCost = w0.lidarCostMs;
-  timings_.fuseCosts = w0.fuseMs;
-  timings_.selectDisparity = w0.selectMs;
-  timings_.aggregatePaths =
-      std::max(0.0, sweeps - w0.censusCostMs - w0.verticalCostMs - w0.lidarCostMs - w0.fuseMs - w0.selectMs);
-
-  t0 = Clock::now();
-  const SelectedDisparity selected{rawDisparity_.view(), bestIndex_.view()};
-  if (f.lrCheck) {
-    ImageView<const std::uint8_t> covered;
-    if (f.mode == MatchMode::Fused) {
-      coverage_.resize(W, H);
-      lidarCoverage(*f.lidar, f.params.lidarCoverageRows, coverage_.view(), threads);
-      covered = coverage_.view();
-    }
-    leftRightCheck(selected, rightIndex_.view(), covered, f.params.minDisparity, f.params.disp12MaxDiff,
-                   /*keepNoCounterpart=*/f.mode == MatchMode::Fused, threads);
-    timings_.leftRightCheck = msBetween(t0, Clock::now());
-    t0 = Clock::now();
-  }
-  medianFilter(rawDisparity_.view(), f.params.medianSize, disparity, threads);
-  timings_.medianFilter = msBetween(t0, Clock::now());
-  if (f.confidence) {
-    t0 = Clock::now();
-    confidenceStage(f, disparity);
-    timings_.confidence = msBetween(t0, Clock::now());
-  }
+  cpu::leftRightCheck(SelectedDisparity{rawDisparity_.view(), bestIndex_.view()}, rightIndex_.view(), covered,
+                      plan.minDisparity, plan.params.disp12MaxDiff,
+                      /*keepNoCounterpart=*/plan.lrCheckTrustsLidar, f.threads);
 }
 
 void CpuMatcher::confidenceStage(const Frame& f, ImageView<const std::int16_t> disparity) {
-  const int W = f.width;
-  const int H = f.height;
-  ConfidenceInputs& in = confidenceInputs_;
-  if (f.mode == MatchMode::LidarOnly) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  ConfidenceInputs& in = f.out.confidenceInputs;
+  if (f.plan.mode == MatchMode::LidarOnly) {
     // No right view: no counterpart anywhere (the core's convention, confidence.hpp).
     in.leftRightDifference.resize(W, H);
     in.leftRightDifference.fill(kNoCounterpartDifference);
@@ -329,161 +218,9 @@ void CpuMatcher::confidenceStage(const Frame& f, ImageView<const std::int16_t> d
   in.texture.resize(W, H);
   in.saturated.resize(W, H);
   in.disparityRange.resize(W, H);
-  confidence_.resize(W, H);
-  confidenceOfFrame(f.left, static_cast<const Image<std::uint8_t>&>(support_).view(), disparity, f.mode,
-                    f.params.paths, in, confidence_.view(), confidenceBuffers_, f.threads);
-}
-
-template <typename PathT>
-void CpuMatcher::sweepUp(const Frame& f) {
-  const int W = f.width;
-  const int H = f.height;
-  const int D = f.D;
-  const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
-  const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
-  const Parameters& p = f.params;
-#pragma omp parallel num_threads(f.threads)
-  {
-    const int team = teamSize();
-    const int t = threadIndex();
-    const int x0 = partBegin(W, team, t);
-    const int x1 = partBegin(W, team, t + 1);
-    Worker& w = workers_[static_cast<std::size_t>(t)];
-    for (int i = 0; i < H; ++i) {
-      const int y = H - 1 - i;
-      std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
-      costRange(f, y, x0, x1, cost + static_cast<std::size_t>(x0) * D, w);
-      for (int k = 0; k < f.verticalPaths; ++k) {
-        PathT* current = as<PathT>(pathRows_, (2 * k + i % 2) * rowSlots);
-        const PathT* previous = i == 0 ? nullptr : as<PathT>(pathRows_, (2 * k + (i + 1) % 2) * rowSlots);
-        std::uint16_t* currentMin = pathMins_.data() + static_cast<std::size_t>(2 * k + i % 2) * W;
-        const std::uint16_t* previousMin = pathMins_.data() + static_cast<std::size_t>(2 * k + (i + 1) % 2) * W;
-        pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2, current,
-                            currentMin);
-        // The first row of every chunk but the top one: the sweep down restarts the upward paths
-        // of the chunk above from here.
-        if (y > 0 && y % kChunkRows == 0) {
-          const std::size_t c = static_cast<std::size_t>(y / kChunkRows - 1) * f.verticalPaths + k;
-          std::copy(current + x0 * slot, current + x1 * slot, as<PathT>(checkpoints_, c * rowSlots) + x0 * slot);
-          std::copy(currentMin + x0, currentMin + x1, checkpointMins_.data() + c * W + x0);
-        }
-      }
-      // Diagonal paths read the neighbouring columns of the previous row: wait for them.
-      if (f.verticalPaths > 1) {
-#pragma omp barrier
-      }
-    }
-  }
-}
-
-template <typename PathT>
-void CpuMatcher::sweepDown(const Frame& f) {
-  const int W = f.width;
-  const int H = f.height;
-  const int D = f.D;
-  const std::size_t rowSlots = static_cast<std::size_t>(W) * pathSlot(D);
-  const std::size_t costRowSize = static_cast<std::size_t>(W) * D;
-  const Parameters& p = f.params;
-  const auto costRow = [&](int y) { return cost_.data() + static_cast<std::size_t>(y) * costRowSize; };
-  // Chunk buffers of each parity: paths [0, vp) downward, [vp, 2 vp) upward (recomputed),
-  // kChunkRows rows each (vp = verticalPaths).
-  const int vp = f.verticalPaths;
-  const auto chunkPath = [&](int parity, int k, int r) {
-    return as<PathT>(chunkPaths_, ((static_cast<std::size_t>(parity) * 2 * vp + k) * kChunkRows + r) * rowSlots);
-  };
-  const auto chunkMin = [&](int parity, int k, int r) {
-    return chunkMins_.data() + ((static_cast<std::size_t>(parity) * 2 * vp + k) * kChunkRows + r) * W;
-  };
-#pragma omp parallel num_threads(f.threads)
-  {
-    const int team = teamSize();
-    const int t = threadIndex();
-    const int x0 = partBegin(W, team, t);
-    const int x1 = partBegin(W, team, t + 1);
-    Worker& w = workers_[static_cast<std::size_t>(t)];
-    const PathT* paths[8];
-    PathT* rightward = as<PathT>(w.rightward);
-    PathT* leftward = as<PathT>(w.leftward);
-    for (int chunk = 0; chunk * kChunkRows < H; ++chunk) {
-      const int yBegin = chunk * kChunkRows;
-      const int rows = std::min(kChunkRows, H - yBegin);
-      const int parity = chunk % 2;
-      // Stage 1, this thread's columns. The upward paths of the chunk's rows again, bottom to top
-      // from the checkpoint the sweep up left below the chunk (the costs were stored, the paths
-      // not: a full volume of them would cost as much memory as the costs).
-      for (int r = rows - 1; r >= 0; --r) {
-        const int y = yBegin + r;
-        for (int k = 0; k < f.verticalPaths; ++k) {
-          const std::size_t c = static_cast<std::size_t>(chunk) * f.verticalPaths + k;
-          const PathT* previous = y == H - 1 ? nullptr
-                                  : r == rows - 1 ? as<PathT>(checkpoints_, c * rowSlots)
-                                                  : chunkPath(parity, vp + k, r + 1);
-          const std::uint16_t* previousMin =
-              r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(parity, vp + k, r + 1);
-          pathRowFromPrevious(costRow(y), 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                              chunkPath(parity, vp + k, r), chunkMin(parity, vp + k, r));
-        }
-        if (f.verticalPaths > 1) {
-#pragma omp barrier
-        }
-      }
-      // ... then the downward paths, top to bottom, continuing the previous chunk's.
-      for (int r = 0; r < rows; ++r) {
-        const int y = yBegin + r;
-        for (int k = 0; k < f.verticalPaths; ++k) {
-          const PathT* previous = y == 0 ? nullptr
-                                  : r == 0 ? chunkPath(1 - parity, k, kChunkRows - 1)
-                                           : chunkPath(parity, k, r - 1);
-          const std::uint16_t* previousMin = r == 0 ? chunkMin(1 - parity, k, kChunkRows - 1) : chunkMin(parity, k, r - 1);
-          pathRowFromPrevious(costRow(y), 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                              chunkPath(parity, k, r), chunkMin(parity, k, r));
-        }
-        if (f.verticalPaths > 1) {
-#pragma omp barrier
-        }
-      }
-#pragma omp barrier
-      // Stage 2, whole rows split among the threads: the horizontal paths need the row's every
-      // cost, then S (all paths) and the winners, and the right view's winners, which read S
-      // diagonally.
-      const int r0 = partBegin(rows, team, t);
-      const int r1 = partBegin(rows, team, t + 1);
-      for (int r = r0; r < r1; ++r) {
-        const int y = yBegin + r;
-        pathRowsHorizontal(costRow(y), W, D, p.P1, p.P2, rightward, leftward);
-        int count = 0;
-        for (int k = 0; k < f.verticalPaths; ++k) {
-          paths[count++] = chunkPath(parity, k, r);
-          paths[count++] = chunkPath(parity, vp + k, r);
-        }
-        paths[count++] = rightward;
-        paths[count++] = leftward;
-        const auto s0 = Clock::now();
-        // The right view's winners and the confidence inputs that need S (from the winners before
-        // the left-right check), in the same pass over each pixel's S as the selection.
-        WinnerExtras extras;
-        extras.width = W;
-        extras.pixelTotal = true;  // nothing reads the row's S after the selection
-        if (f.lrCheck || f.confidenceLr) {
-          extras.rightScratch = w.rightScratch.data();
-          extras.rightIndex = rightIndex_.view().row(y);
-        }
-        if (f.confidence) {
-          extras.margin = confidenceInputs_.margin.view().row(y);
-          extras.bestCost = confidenceInputs_.bestCost.view().row(y);
-        }
-        sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, p.minDisparity, p.uniquenessRatio, p.subpixel,
-                     w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y), &extras);
-        if (f.confidenceLr) {
-          leftRightDifferenceRow(bestIndex_.view().row(y), rightIndex_.view().row(y), W, p.minDisparity,
-                                 confidenceInputs_.leftRightDifference.view().row(y));
-        }
-        w.selectMs += msBetween(s0, Clock::now());
-      }
-      // No barrier here: the next chunk fills the other parity's buffers, and the barrier after
-      // its stage 1 keeps this chunk's buffers alive until every thread has finished stage 2.
-    }
-  }
+  f.out.confidence.resize(W, H);
+  confidenceOfFrame(f.left, std::as_const(f.out.support).view(), disparity, f.plan.mode, f.plan.params.paths, in,
+                    f.out.confidence.view(), confidenceBuffers_, f.threads);
 }
 
 }  // namespace cpu

@@ -24,6 +24,7 @@
 // step, cheaper than a second volume). Every sum is of the same non-negative integers in any
 // order, so the result is cpu_ref's bit for bit whatever the thread count.
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -31,41 +32,100 @@
 #include "backends/common/lidar_cost_table.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/huge_buffer.hpp"
-#include "lidar_sgm/core/matcher.hpp"
+#include "core/backend.hpp"
 
 namespace lidar_sgm {
 namespace cpu {
 
-class CpuMatcher final : public Matcher {
+class CpuMatcher final : public MatcherBackend {
  public:
-  explicit CpuMatcher(const Parameters& params) : Matcher(params) {}
   Backend backend() const override { return Backend::Cpu; }
-
- protected:
-  void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) override;
-  void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                       const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                       ImageView<std::int16_t> disparity) override;
+  void run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+           FrameResults& out) override;
   /// The confidence's core part runs here too, with the backend's threads (confidence.cpp).
   bool computesConfidence() const override { return true; }
 
  private:
-  struct Frame;  // the inputs of one compute(), resolved
-  struct Worker;  // one thread's scratch rows and stage clocks
+  /// One compute() call: the core's plan and how this backend lays it out.
+  struct Frame {
+    Frame(const FramePlan& framePlan, FrameResults& results) : plan(framePlan), out(results) {}
+    const FramePlan& plan;
+    FrameResults& out;
+    GrayImageView left;  // empty in LiDAR-only mode (the confidence reads no image there)
+    const LidarPoints* lidar = nullptr;
+    int threads = 1;
+    int verticalPaths = 1;       // per sweep: 1 with 4 paths, 3 with 8
+    bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
+    std::size_t rowSlots = 0;    // path elements per image row: width * pathSlot(D)
+    int planePad = 0;            // the right census planes' layout (census_cost.cpp)
+    std::size_t planeStride = 0;
+  };
+  /// One thread's scratch rows and stage clocks.
+  struct Worker {
+    std::vector<std::uint8_t> stereo;    // C_S (fused mode)
+    std::vector<std::uint8_t> lidar;     // C_L (fused mode)
+    std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
+    std::vector<std::uint16_t> total;      // S of one pixel (the selection needs no more)
+    std::vector<std::uint8_t> rightward;  // L of the left-to-right path along one row (slots, bytes)
+    std::vector<std::uint8_t> leftward;   // ... and of the right-to-left path
+    std::vector<std::uint16_t> rightScratch;  // the right view's winners of a row
+    double censusCostMs = 0;
+    double verticalCostMs = 0;
+    double lidarCostMs = 0;
+    double fuseMs = 0;
+    double selectMs = 0;
+  };
+  /// Adds the time since the previous lap to one of a worker's stage clocks.
+  class Lap {
+   public:
+    void operator()(double& ms) {
+      const auto now = std::chrono::steady_clock::now();
+      ms += std::chrono::duration<double, std::milli>(now - last_).count();
+      last_ = now;
+    }
+
+   private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  };
+
+  // Before the sweeps (cpu_matcher.cpp).
+  void censusImages(Frame& frame, const FrameInputs& in);
+  void lidarPixels(const Frame& frame);
   void runStages(const Frame& frame, ImageView<std::int16_t> disparity);
+  /// Grows the buffers of the sweeps and the selection to the frame (kept between frames).
+  void prepareBuffers(const Frame& frame);
+  void preparePathRows(const Frame& frame, bool& newLayout);
+  void prepareWorkers(const Frame& frame, bool newLayout);
+  // The sweeps (sweeps.cpp): the costs, Eq. 1 along every path, and the selection.
+  void aggregateAndSelect(const Frame& frame);
   template <typename PathT>
   void sweepUp(const Frame& frame);
   template <typename PathT>
   void sweepDown(const Frame& frame);
+  template <typename PathT>
+  void upwardPathsOfChunk(const Frame& frame, int chunk, int x0, int x1);
+  template <typename PathT>
+  void downwardPathsOfChunk(const Frame& frame, int chunk, int x0, int x1);
+  template <typename PathT>
+  void selectChunkRows(const Frame& frame, int chunk, int r0, int r1, Worker& worker);
+  /// A chunk's path row r of path k (k < verticalPaths: downward, else upward) and its minima.
+  template <typename PathT>
+  PathT* chunkPath(const Frame& frame, int parity, int k, int r);
+  std::uint16_t* chunkMin(const Frame& frame, int parity, int k, int r);
   /// Path buffers (bytes) viewed as path elements of type T.
   template <typename T>
   static T* as(std::vector<std::uint8_t>& bytes, std::size_t elementOffset = 0) {
     return reinterpret_cast<T*>(bytes.data()) + elementOffset;
   }
+  /// C of pixels x0 .. x1-1 of row y (costs.cpp).
   void costRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* cost, Worker& worker);
-  /// The confidence and the inputs the core would compute (Matcher::computeConfidence), from
-  /// the frame's left image, support_ and the final disparity.
+  void lidarCostRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* lidar);
+  void tripleCostRange(const Frame& frame, int y, int x0, int x1, const std::uint8_t* lidar, std::uint8_t* cost,
+                       Worker& worker, Lap& lap);
+  // After the sweeps (cpu_matcher.cpp).
+  void leftRightCheck(const Frame& frame);
+  /// The confidence and the inputs the core would compute (the facade's computeConfidence), from
+  /// the frame's left image, the support and the final disparity.
   void confidenceStage(const Frame& frame, ImageView<const std::int16_t> disparity);
 
   // Buffers kept between frames (resized only when the frame size changes).
@@ -90,8 +150,8 @@ class CpuMatcher final : public Matcher {
   Image<std::int16_t> rightIndex_;
   Image<std::uint8_t> coverage_;
   Image<std::uint8_t> touched_;  // 1 where a LiDAR point lies in the pixel's 3x3 neighbourhood
-  Image<std::uint16_t> lidarWeights_;
-  ConfidenceBuffers confidenceBuffers_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
+  Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
+  ConfidenceBuffers confidenceBuffers_;
   LidarCostTable table_;
   float tableSigma_ = 0;
   int tableCap_ = -1;

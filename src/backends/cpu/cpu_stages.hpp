@@ -4,7 +4,7 @@
 // (fixed partitions of rows or columns; no reduction whose order depends on the thread count).
 //
 // SIMD comes from Highway with runtime dispatch (the same binary runs AVX-512, AVX2, SSE4 or
-// NEON code, whichever the CPU has); threads from OpenMP. The matcher (cpu_matcher.cpp) streams
+// NEON code, whichever the CPU has); threads from OpenMP. The matcher (cpu_matcher.hpp) streams
 // the same row kernels (cpu_kernels.hpp) with only one volume (the fused cost) and no C_S, C_L or
 // path-cost volumes; these whole-volume stages exist so that every stage can be tested against
 // cpu_ref on its own.

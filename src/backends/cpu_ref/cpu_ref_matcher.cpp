@@ -7,8 +7,9 @@
 #include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
-namespace {
+namespace cpu_ref {
 
+/// Splits a frame's wall time into its stages, one lap each.
 class StageClock {
  public:
   double lapMs() {
@@ -22,6 +23,10 @@ class StageClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+}  // namespace cpu_ref
+
+namespace {
+
 void census(const GrayImageView& image, CensusType type, Image<std::uint64_t>& out) {
   out.resize(image.width(), image.height());
   if (!image.gray8.empty()) {
@@ -33,121 +38,122 @@ void census(const GrayImageView& image, CensusType type, Image<std::uint64_t>& o
 
 }  // namespace
 
-std::unique_ptr<Matcher> createCpuRefMatcher(const Parameters& params) {
-  return std::make_unique<CpuRefMatcher>(params);
-}
+std::unique_ptr<MatcherBackend> createCpuRefMatcher() { return std::make_unique<CpuRefMatcher>(); }
 
-void CpuRefMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                        const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
-  runStages(params, left, right, nullptr, 0, lidar, mode, disparity);
-}
+void CpuRefMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                        FrameResults& out) {
+  const Parameters& p = plan.params;
+  cpu_ref::StageClock clock;
+  const MatchingCostVolume& cost = matchingCost(plan, in, clock, out);
 
-void CpuRefMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left,
-                                    const GrayImageView& right, const GrayImageView& up, int ratio16,
-                                    const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
-  runStages(params, left, right, &up, ratio16, lidar, mode, disparity);
-}
+  sum_.resize(plan.width, plan.height, plan.D);
+  cpu_ref::aggregatePaths(cost, p.P1, p.P2, p.paths, sum_);
+  out.timings.aggregatePaths = clock.lapMs();
 
-void CpuRefMatcher::runStages(const Parameters& params, const GrayImageView& left, const GrayImageView& right, const GrayImageView* up,
-                              int ratio16, const LidarPoints* lidar, MatchMode mode,
-                              ImageView<std::int16_t> disparity) {
-  const Parameters& p = params;
-  const int width = disparity.width;
-  const int height = disparity.height;
-  const int D = p.numDisparities;
-  StageClock clock;
+  rawDisparity_.resize(plan.width, plan.height);
+  bestIndex_.resize(plan.width, plan.height);
+  cpu_ref::selectDisparity(sum_, plan.minDisparity, p.uniquenessRatio, p.subpixel,
+                           SelectedDisparity{rawDisparity_.view(), bestIndex_.view()});
+  out.timings.selectDisparity = clock.lapMs();
 
-  support_.resize(width, height);
-  support_.fill(0);
-  // The camera cost: C_S with two cameras, C_S3 = (C_S + C_V + 1) >> 1 with the up camera.
-  const MatchingCostVolume* cameraCost = &stereoCost_;
-  if (mode != MatchMode::LidarOnly) {
-    census(left, p.censusType, leftCensus_);
-    census(right, p.censusType, rightCensus_);
-    if (up != nullptr) census(*up, p.censusType, upCensus_);
-    timings_.census = clock.lapMs();
-    stereoCost_.resize(width, height, D);
-    cpu_ref::censusCost(leftCensus_.view(), rightCensus_.view(), p.censusType, p.minDisparity, stereoCost_);
-    timings_.censusCost = clock.lapMs();
-    if (up != nullptr) {
-      verticalCost_.resize(width, height, D);
-      cpu_ref::verticalCensusCost(leftCensus_.view(), upCensus_.view(), p.censusType, ratio16, p.minDisparity,
-                                  verticalCost_);
-      cameraCost_.resize(width, height, D);
-      cpu_ref::combineCameraCosts(stereoCost_, verticalCost_, cameraCost_);
-      cameraCost = &cameraCost_;
-      timings_.verticalCensusCost = clock.lapMs();
-    }
-  }
-  if (mode != MatchMode::StereoOnly) {
-    if (tableSigma_ != p.sigma || tableCap_ != p.lidarCostCap) {
-      table_ = LidarCostTable(p.sigma, p.lidarCostCap);
-      tableSigma_ = p.sigma;
-      tableCap_ = p.lidarCostCap;
-    }
-    lidarCost_.resize(width, height, D);
-    cpu_ref::lidarCost(*lidar, table_, p.minDisparity, lidarCost_, support_.view());
-    timings_.lidarCost = clock.lapMs();
-  }
-  const MatchingCostVolume* cost = mode == MatchMode::StereoOnly ? cameraCost : &lidarCost_;
-  if (mode == MatchMode::Fused) {
-    fusedCost_.resize(width, height, D);
-    // The LiDAR weight of each pixel, alphaWeight(alpha) everywhere with a fixed alpha.
-    lidarWeights_.resize(width, height);
-    lidarWeights(*lidar, p, lidarWeights_.view());
-    cpu_ref::fuseCosts(lidarCost_, *cameraCost, support_.view(), std::as_const(lidarWeights_).view(),
-                       p.stereoCostWithoutLidar, fusedCost_);
-    cost = &fusedCost_;
-    timings_.fuseCosts = clock.lapMs();
-  }
-
-  sum_.resize(width, height, D);
-  cpu_ref::aggregatePaths(*cost, p.P1, p.P2, p.paths, sum_);
-  timings_.aggregatePaths = clock.lapMs();
-
-  rawDisparity_.resize(width, height);
-  bestIndex_.resize(width, height);
-  const SelectedDisparity selected{rawDisparity_.view(), bestIndex_.view()};
-  cpu_ref::selectDisparity(sum_, p.minDisparity, p.uniquenessRatio, p.subpixel, selected);
-  timings_.selectDisparity = clock.lapMs();
-
-  // The confidence inputs that need S (core/confidence.hpp), read before the check invalidates.
-  const bool confidenceLr = p.confidence && mode != MatchMode::LidarOnly;
-  if (p.confidence) {
-    confidenceInputs_.margin.resize(width, height);
-    confidenceInputs_.bestCost.resize(width, height);
-    cpu_ref::peakRatioMargin(sum_, std::as_const(bestIndex_).view(), confidenceInputs_.margin.view(),
-                             confidenceInputs_.bestCost.view());
-  }
-  if (confidenceLr) {
-    rightIndex_.resize(width, height);
-    cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());
-    confidenceInputs_.leftRightDifference.resize(width, height);
-    cpu_ref::leftRightDifference(std::as_const(bestIndex_).view(), std::as_const(rightIndex_).view(), p.minDisparity,
-                                 confidenceInputs_.leftRightDifference.view());
-  }
-
-  // With the up camera too, the check still compares the left and right views (the right view's
-  // winners read diagonally from the same, C_S3-based, volume); the up view is not checked.
-  const bool lrCheck = mode == MatchMode::StereoOnly ? p.lrCheck : mode == MatchMode::Fused && p.lrCheck && p.lrCheckWithLidar;
-  if (lrCheck) {
-    if (!confidenceLr) {
-      rightIndex_.resize(width, height);
-      cpu_ref::rightDisparityIndex(sum_, p.minDisparity, rightIndex_.view());
-    }
-    ImageView<const std::uint8_t> support;
-    if (mode == MatchMode::Fused) {
-      coverage_.resize(width, height);
-      cpu_ref::lidarCoverage(*lidar, p.lidarCoverageRows, coverage_.view());
-      support = coverage_.view();
-    }
-    cpu_ref::leftRightCheck(selected, rightIndex_.view(), support, p.minDisparity, p.disp12MaxDiff,
-                            /*keepNoCounterpart=*/mode == MatchMode::Fused);
-    timings_.leftRightCheck = clock.lapMs();
+  confidenceInputs(plan, out.confidenceInputs);
+  if (plan.lrCheck) {
+    leftRightCheck(plan, in.lidar);
+    out.timings.leftRightCheck = clock.lapMs();
   }
 
   cpu_ref::medianFilter(rawDisparity_.view(), p.medianSize, disparity);
-  timings_.medianFilter = clock.lapMs();
+  out.timings.medianFilter = clock.lapMs();
+}
+
+const MatchingCostVolume& CpuRefMatcher::matchingCost(const FramePlan& plan, const FrameInputs& in,
+                                                      cpu_ref::StageClock& clock, FrameResults& out) {
+  out.support.resize(plan.width, plan.height);
+  out.support.fill(0);
+  const MatchingCostVolume* camera = plan.useCameras() ? &cameraCost(plan, in, clock, out.timings) : nullptr;
+  if (!plan.useLidar) return *camera;
+  lidarCost(plan, *in.lidar, out.support.view());
+  out.timings.lidarCost = clock.lapMs();
+  if (plan.mode != MatchMode::Fused) return lidarCost_;
+  const MatchingCostVolume& fused = fuseCosts(plan, *in.lidar, *camera, std::as_const(out.support).view());
+  out.timings.fuseCosts = clock.lapMs();
+  return fused;
+}
+
+const MatchingCostVolume& CpuRefMatcher::cameraCost(const FramePlan& plan, const FrameInputs& in,
+                                                    cpu_ref::StageClock& clock, StageTimings& timings) {
+  const CensusType type = plan.params.censusType;
+  census(in.left, type, leftCensus_);
+  census(in.right, type, rightCensus_);
+  if (plan.upCamera()) census(in.up, type, upCensus_);
+  timings.census = clock.lapMs();
+  stereoCost_.resize(plan.width, plan.height, plan.D);
+  cpu_ref::censusCost(leftCensus_.view(), rightCensus_.view(), type, plan.minDisparity, stereoCost_);
+  timings.censusCost = clock.lapMs();
+  if (!plan.upCamera()) return stereoCost_;
+  verticalCost_.resize(plan.width, plan.height, plan.D);
+  cpu_ref::verticalCensusCost(leftCensus_.view(), upCensus_.view(), type, plan.ratio16, plan.minDisparity,
+                              verticalCost_);
+  cameraCost_.resize(plan.width, plan.height, plan.D);
+  cpu_ref::combineCameraCosts(stereoCost_, verticalCost_, cameraCost_);
+  timings.verticalCensusCost = clock.lapMs();
+  return cameraCost_;
+}
+
+void CpuRefMatcher::lidarCost(const FramePlan& plan, const LidarPoints& lidar, ImageView<std::uint8_t> support) {
+  const Parameters& p = plan.params;
+  if (tableSigma_ != p.sigma || tableCap_ != p.lidarCostCap) {
+    table_ = LidarCostTable(p.sigma, p.lidarCostCap);
+    tableSigma_ = p.sigma;
+    tableCap_ = p.lidarCostCap;
+  }
+  lidarCost_.resize(plan.width, plan.height, plan.D);
+  cpu_ref::lidarCost(lidar, table_, plan.minDisparity, lidarCost_, support);
+}
+
+const MatchingCostVolume& CpuRefMatcher::fuseCosts(const FramePlan& plan, const LidarPoints& lidar,
+                                                   const MatchingCostVolume& cameraCost,
+                                                   ImageView<const std::uint8_t> support) {
+  fusedCost_.resize(plan.width, plan.height, plan.D);
+  // The LiDAR weight of each pixel, alphaWeight(alpha) everywhere with a fixed alpha.
+  lidarWeights_.resize(plan.width, plan.height);
+  lidarWeights(lidar, plan.params, lidarWeights_.view());
+  cpu_ref::fuseCosts(lidarCost_, cameraCost, support, std::as_const(lidarWeights_).view(),
+                     plan.params.stereoCostWithoutLidar, fusedCost_);
+  return fusedCost_;
+}
+
+void CpuRefMatcher::confidenceInputs(const FramePlan& plan, ConfidenceInputs& out) {
+  if (plan.confidence) {
+    out.margin.resize(plan.width, plan.height);
+    out.bestCost.resize(plan.width, plan.height);
+    cpu_ref::peakRatioMargin(sum_, std::as_const(bestIndex_).view(), out.margin.view(), out.bestCost.view());
+  }
+  if (plan.confidenceLr) {
+    rightIndex_.resize(plan.width, plan.height);
+    cpu_ref::rightDisparityIndex(sum_, plan.minDisparity, rightIndex_.view());
+    out.leftRightDifference.resize(plan.width, plan.height);
+    cpu_ref::leftRightDifference(std::as_const(bestIndex_).view(), std::as_const(rightIndex_).view(),
+                                 plan.minDisparity, out.leftRightDifference.view());
+  }
+}
+
+// With the up camera too, the check compares the left and right views (the right view's winners
+// read diagonally from the same, C_S3-based, volume); the up view is not checked.
+void CpuRefMatcher::leftRightCheck(const FramePlan& plan, const LidarPoints* lidar) {
+  if (!plan.confidenceLr) {
+    rightIndex_.resize(plan.width, plan.height);
+    cpu_ref::rightDisparityIndex(sum_, plan.minDisparity, rightIndex_.view());
+  }
+  ImageView<const std::uint8_t> covered;
+  if (plan.lrCheckTrustsLidar) {
+    coverage_.resize(plan.width, plan.height);
+    cpu_ref::lidarCoverage(*lidar, plan.params.lidarCoverageRows, coverage_.view());
+    covered = coverage_.view();
+  }
+  cpu_ref::leftRightCheck(SelectedDisparity{rawDisparity_.view(), bestIndex_.view()}, rightIndex_.view(), covered,
+                          plan.minDisparity, plan.params.disp12MaxDiff,
+                          /*keepNoCounterpart=*/plan.lrCheckTrustsLidar);
 }
 
 }  // namespace lidar_sgm

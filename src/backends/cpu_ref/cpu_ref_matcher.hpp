@@ -5,26 +5,32 @@
 
 #include "backends/common/cost_volume.hpp"
 #include "backends/common/lidar_cost_table.hpp"
-#include "lidar_sgm/core/matcher.hpp"
+#include "core/backend.hpp"
 
 namespace lidar_sgm {
+namespace cpu_ref {
+class StageClock;
+}  // namespace cpu_ref
 
-class CpuRefMatcher final : public Matcher {
+class CpuRefMatcher final : public MatcherBackend {
  public:
-  explicit CpuRefMatcher(const Parameters& params) : Matcher(params) {}
   Backend backend() const override { return Backend::CpuRef; }
-
- protected:
-  void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-           const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) override;
-  void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                       const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                       ImageView<std::int16_t> disparity) override;
+  void run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+           FrameResults& out) override;
 
  private:
-  /// Both entry points: `up` null for two cameras (then ratio16 is unused).
-  void runStages(const Parameters& params, const GrayImageView& left, const GrayImageView& right, const GrayImageView* up, int ratio16,
-                 const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity);
+  /// The camera cost: C_S with two cameras, C_S3 = (C_S + C_V + 1) >> 1 with the up camera.
+  const MatchingCostVolume& cameraCost(const FramePlan& plan, const FrameInputs& in, cpu_ref::StageClock& clock,
+                                       StageTimings& timings);
+  void lidarCost(const FramePlan& plan, const LidarPoints& lidar, ImageView<std::uint8_t> support);
+  const MatchingCostVolume& fuseCosts(const FramePlan& plan, const LidarPoints& lidar,
+                                      const MatchingCostVolume& cameraCost, ImageView<const std::uint8_t> support);
+  /// The matching cost of the plan's mode (C_S or C_S3, C_L, or Eq. 5's fusion of both).
+  const MatchingCostVolume& matchingCost(const FramePlan& plan, const FrameInputs& in, cpu_ref::StageClock& clock,
+                                         FrameResults& out);
+  /// The confidence inputs that need S (core/confidence.hpp), read before the check invalidates.
+  void confidenceInputs(const FramePlan& plan, ConfidenceInputs& out);
+  void leftRightCheck(const FramePlan& plan, const LidarPoints* lidar);
 
   // Buffers kept between frames (resized only when the frame size changes).
   Image<std::uint64_t> leftCensus_;

@@ -1,28 +1,20 @@
 #include "backends/cuda/cuda_matcher.hpp"
 
-#include <algorithm>
-#include <array>
 #include <stdexcept>
 #include <string>
 #include <utility>
-#include <vector>
 
 #include <cuda_runtime_api.h>
 
-#include "backends/common/lidar_cost_table.hpp"
 #include "backends/common/lidar_weights.hpp"
-#include "backends/common/stages.hpp"
 #include "backends/cuda/cuda_error.hpp"
-#include "backends/cuda/device_buffer.hpp"
 #include "backends/cuda/kernels.hpp"
+#include "backends/cuda/matcher_device.hpp"
 #include "backends/cuda/transfers.hpp"
-#include "lidar_sgm/core/confidence.hpp"
 
 namespace lidar_sgm {
 
-std::unique_ptr<Matcher> createCudaMatcher(const Parameters& params) {
-  return std::make_unique<cuda::CudaMatcher>(params);
-}
+std::unique_ptr<MatcherBackend> createCudaMatcher() { return std::make_unique<cuda::CudaMatcher>(); }
 
 std::string cudaBackendUnavailable() { return cuda::cudaUnavailableReason(); }
 
@@ -39,113 +31,20 @@ std::string cudaUnavailableReason() {
   return "";
 }
 
-namespace {
-
-// The points in time between which the stages of a frame ran, recorded on the stream.
-enum Mark {
-  kStart,
-  kUploaded,
-  kCensus,
-  kLidar,
-  kAggregated,
-  kSelected,
-  kChecked,
-  kFiltered,
-  kConfidence,
-  kDownloaded,
-  kMarks
+struct CudaMatcher::FrameImages {
+  CostSettings costs;  // what the path recursion computes the matching cost from
+  bool sixteen = false;
+  // The cameras as the census reads them (left, right, up): the caller's device memory, or ours.
+  DeviceImage<const std::uint8_t> images8[3];
+  DeviceImage<const std::uint16_t> images16[3];
+  DeviceImage<std::uint64_t> census[3];
+  DeviceImage<std::uint8_t> support, coverage;
+  DeviceVolume<std::uint16_t> pathCosts, sum;
+  DeviceImage<std::int16_t> raw, best, rightIndex, filtered;
+  DeviceImage<std::uint8_t> margin, difference;
+  DeviceImage<std::uint16_t> bestCost;
+  DeviceImage<std::uint8_t> verticalDistance, distance, texture, saturated, range, confidence;
 };
-
-}  // namespace
-
-struct CudaMatcher::Device {
-  cudaStream_t stream = nullptr;
-  std::array<cudaEvent_t, kMarks> events{};
-
-  DeviceBuffer<std::uint8_t> images8[3];    // left, right, up (8-bit frames)
-  DeviceBuffer<std::uint16_t> images16[3];  // ... (16-bit frames)
-  DeviceBuffer<std::uint64_t> census[3];
-  DeviceBuffer<int> pixelStart;
-  DeviceBuffer<int> disparities16;
-  DeviceBuffer<std::uint8_t> table;
-  DeviceBuffer<std::uint16_t> weights;  // adaptive alpha only
-  DeviceBuffer<std::uint8_t> support;
-  DeviceBuffer<std::uint8_t> coverage;
-  DeviceBuffer<std::uint16_t> pathCosts;  // one L_r volume per path
-  DeviceBuffer<std::uint16_t> sum;
-  DeviceBuffer<std::int16_t> rawDisparity;
-  DeviceBuffer<std::int16_t> bestIndex;
-  DeviceBuffer<std::int16_t> rightIndex;
-  DeviceBuffer<std::int16_t> disparity;
-  DeviceBuffer<std::uint8_t> margin;
-  DeviceBuffer<std::uint16_t> bestCost;
-  DeviceBuffer<std::uint8_t> leftRightDifference;
-  // The confidence's core part (confidence.cu) and its logistic table.
-  DeviceBuffer<std::uint8_t> verticalDistance;
-  DeviceBuffer<std::uint8_t> lidarDistance;
-  DeviceBuffer<std::uint8_t> texture;
-  DeviceBuffer<std::uint8_t> saturated;
-  DeviceBuffer<std::uint8_t> disparityRange;
-  DeviceBuffer<std::uint8_t> confidence;
-  DeviceBuffer<std::uint8_t> sigmoid;
-  LidarCostTable hostTable;
-  float tableSigma = 0;
-  int tableCap = -1;
-  Image<std::uint16_t> hostWeights;
-
-  Device() {
-    LIDAR_SGM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
-    for (cudaEvent_t& e : events) LIDAR_SGM_CUDA_CHECK(cudaEventCreate(&e));
-    // The core's logistic curve, entry i at logit (i - 1024) / 64 (confidenceFromLogit256).
-    std::vector<std::uint8_t> curve(2048);
-    for (int i = 0; i < 2048; ++i) curve[static_cast<std::size_t>(i)] = confidenceFromLogit256(4 * (i - 1024));
-    uploadVector(curve, sigmoid, stream);
-    LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(stream));
-  }
-  ~Device() {
-    for (cudaEvent_t e : events) {
-      if (e != nullptr) cudaEventDestroy(e);
-    }
-    if (stream != nullptr) cudaStreamDestroy(stream);
-  }
-  Device(const Device&) = delete;
-  Device& operator=(const Device&) = delete;
-
-  void mark(Mark m) { LIDAR_SGM_CUDA_CHECK(cudaEventRecord(events[m], stream)); }
-  double ms(Mark from, Mark to) const {
-    float value = 0;
-    LIDAR_SGM_CUDA_CHECK(cudaEventElapsedTime(&value, events[from], events[to]));
-    return value;
-  }
-};
-
-// Host buffers of computeOnDevice: what comes back from the device, kept between frames.
-struct CudaMatcher::HostCopies {
-  std::vector<LidarSample> samples;
-  Image<std::uint8_t> left8, right8;
-  Image<std::uint16_t> left16, right16;
-  Image<std::int16_t> disparity;
-};
-
-CudaMatcher::CudaMatcher(const Parameters& params) : Matcher(params) {
-  const std::string why = cudaUnavailableReason();
-  if (!why.empty()) throw std::runtime_error("backend cuda: " + why);
-  device_ = std::make_unique<Device>();
-  hostCopies_ = std::make_unique<HostCopies>();
-}
-
-CudaMatcher::~CudaMatcher() = default;
-
-void CudaMatcher::run(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                      const LidarPoints* lidar, MatchMode mode, ImageView<std::int16_t> disparity) {
-  runStages(params, left, right, nullptr, 0, lidar, mode, disparity);
-}
-
-void CudaMatcher::runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                                  const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                                  ImageView<std::int16_t> disparity) {
-  runStages(params, left, right, &up, ratio16, lidar, mode, disparity);
-}
 
 namespace {
 
@@ -153,6 +52,12 @@ template <typename T>
 DeviceImage<T> denseImage(DeviceBuffer<std::remove_const_t<T>>& buffer, int width, int height) {
   buffer.reserve(static_cast<std::size_t>(width) * height);
   return DeviceImage<T>{buffer.data(), width, height, width};
+}
+
+template <typename T>
+DeviceVolume<T> denseVolume(DeviceBuffer<T>& buffer, int width, int height, int D, int copies = 1) {
+  buffer.reserve(static_cast<std::size_t>(width) * height * D * static_cast<std::size_t>(copies));
+  return DeviceVolume<T>{buffer.data(), width, height, D};
 }
 
 template <typename T>
@@ -167,259 +72,252 @@ DeviceVolume<const T> asConst(DeviceVolume<T> volume) {
 
 }  // namespace
 
-void CudaMatcher::runStages(const Parameters& p, const GrayImageView& left, const GrayImageView& right,
-                            const GrayImageView* up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                            ImageView<std::int16_t> disparity, bool inputsOnDevice, bool outputOnDevice) {
+CudaMatcher::CudaMatcher() {
+  const std::string why = cudaUnavailableReason();
+  if (!why.empty()) throw std::runtime_error("backend cuda: " + why);
+  device_ = std::make_unique<Device>();
+}
+
+CudaMatcher::~CudaMatcher() = default;
+
+void CudaMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                      FrameResults& out) {
+  runStages(plan, in, disparity, out, /*inputsOnDevice=*/false, /*outputOnDevice=*/false);
+}
+
+void CudaMatcher::runOnDevice(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                              MemorySpace disparitySpace, FrameResults& out) {
+  runStages(plan, in, disparity, out, /*inputsOnDevice=*/true, disparitySpace == MemorySpace::Device);
+}
+
+void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                            FrameResults& out, bool inputsOnDevice, bool outputOnDevice) {
   Device& dev = *device_;
-  const int width = disparity.width;
-  const int height = disparity.height;
-  const int D = p.numDisparities;
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  cudaStream_t stream = dev.stream;
   dev.mark(kStart);
-
-  // Uploads: the images, the LiDAR points as LidarPoints keeps them, the cost table and weights.
-  CostSettings s;
-  s.width = width;
-  s.height = height;
-  s.numDisparities = D;
-  s.minDisparity = p.minDisparity;
-  s.useCamera = mode != MatchMode::LidarOnly;
-  s.useLidar = mode != MatchMode::StereoOnly;
-  s.censusScale = p.censusType == CensusType::Census9x7 ? 1 : 2;
-  s.ratio16 = ratio16;
-  const GrayImageView* cameras[3] = {&left, &right, up};
-  const int cameraCount = !s.useCamera ? 0 : up != nullptr ? 3 : 2;
-  const bool sixteen = s.useCamera && left.gray8.empty();
-  // The cameras as the census reads them: the caller's device memory as it is, or an upload.
-  DeviceImage<const std::uint8_t> images8[3];
-  DeviceImage<const std::uint16_t> images16[3];
-  for (int i = 0; i < cameraCount; ++i) {
-    if (inputsOnDevice) {
-      images8[i] = DeviceImage<const std::uint8_t>{cameras[i]->gray8.data, width, height, cameras[i]->gray8.stride};
-      images16[i] = DeviceImage<const std::uint16_t>{cameras[i]->gray16.data, width, height, cameras[i]->gray16.stride};
-    } else if (sixteen) {
-      uploadImage(cameras[i]->gray16, dev.images16[i], stream);
-      images16[i] = DeviceImage<const std::uint16_t>{dev.images16[i].data(), width, height, width};
-    } else {
-      uploadImage(cameras[i]->gray8, dev.images8[i], stream);
-      images8[i] = DeviceImage<const std::uint8_t>{dev.images8[i].data(), width, height, width};
-    }
-  }
-  if (s.useLidar) {
-    uploadLidar(*lidar, dev.pixelStart, dev.disparities16, stream);
-    s.lidar = DeviceLidar{dev.pixelStart.data(), dev.disparities16.data(), width, height};
-    if (dev.tableSigma != p.sigma || dev.tableCap != p.lidarCostCap) {
-      dev.hostTable = LidarCostTable(p.sigma, p.lidarCostCap);
-      dev.tableSigma = p.sigma;
-      dev.tableCap = p.lidarCostCap;
-      uploadVector(dev.hostTable.entries(), dev.table, stream);
-    }
-    s.table = DeviceCostTable{dev.table.data(), static_cast<int>(dev.hostTable.entries().size()), dev.hostTable.cap()};
-    if (mode == MatchMode::Fused) {
-      if (p.alphaMode == AlphaMode::Fixed) {
-        s.alphaWeight = alphaWeight(p.alpha);
-      } else {
-        // The per-pixel LiDAR weight of Eq. 5, computed by the code every backend shares.
-        dev.hostWeights.resize(width, height);
-        lidarWeights(*lidar, p, dev.hostWeights.view());
-        uploadImage(std::as_const(dev.hostWeights).view(), dev.weights, stream);
-        s.weights = DeviceImage<const std::uint16_t>{dev.weights.data(), width, height, width};
-      }
-    }
-    s.stereoCostWithoutLidar = p.stereoCostWithoutLidar;
-  }
-  dev.mark(kUploaded);
-
-  if (s.useCamera) {
-    DeviceImage<std::uint64_t> census[3];
-    for (int i = 0; i < cameraCount; ++i) {
-      census[i] = denseImage<std::uint64_t>(dev.census[i], width, height);
-      if (sixteen) {
-        cuda::censusTransform(images16[i], p.censusType, census[i], stream);
-      } else {
-        cuda::censusTransform(images8[i], p.censusType, census[i], stream);
-      }
-    }
-    s.leftCensus = asConst(census[0]);
-    s.rightCensus = asConst(census[1]);
-    if (cameraCount == 3) s.upCensus = asConst(census[2]);
-  }
-  dev.mark(kCensus);
-  const DeviceImage<std::uint8_t> support = denseImage<std::uint8_t>(dev.support, width, height);
-  if (s.useLidar) cuda::lidarSupport(s.lidar, support, stream);
-  dev.mark(kLidar);
-
-  // Eq. 1 with the matching cost (C_S, C_S3, C_L or Eq. 5) computed inside the recursion.
-  dev.pathCosts.reserve(pixels * D * static_cast<std::size_t>(p.paths));
-  const DeviceVolume<std::uint16_t> pathCosts{dev.pathCosts.data(), width, height, D};
-  cuda::aggregatePaths(s, p.P1, p.P2, p.paths, pathCosts, stream);
-  dev.mark(kAggregated);
-
-  dev.sum.reserve(pixels * D);
-  const DeviceVolume<std::uint16_t> sum{dev.sum.data(), width, height, D};
-  const DeviceImage<std::int16_t> raw = denseImage<std::int16_t>(dev.rawDisparity, width, height);
-  const DeviceImage<std::int16_t> best = denseImage<std::int16_t>(dev.bestIndex, width, height);
-  cuda::selectDisparity(asConst(pathCosts), p.paths, sum, p.minDisparity, p.uniquenessRatio, p.subpixel, raw, best, stream);
-  // The confidence inputs that need S (core/confidence.hpp), read before the check invalidates.
-  const bool confidenceLr = p.confidence && mode != MatchMode::LidarOnly;
-  const DeviceImage<std::uint8_t> margin = denseImage<std::uint8_t>(dev.margin, width, height);
-  const DeviceImage<std::uint16_t> bestCost = denseImage<std::uint16_t>(dev.bestCost, width, height);
-  if (p.confidence) cuda::peakRatioMargin(asConst(sum), asConst(best), margin, bestCost, stream);
-  dev.mark(kSelected);
-
-  const bool lrCheck = mode == MatchMode::StereoOnly ? p.lrCheck
-                                                      : mode == MatchMode::Fused && p.lrCheck && p.lrCheckWithLidar;
-  const DeviceImage<std::int16_t> rightIndex = denseImage<std::int16_t>(dev.rightIndex, width, height);
-  const DeviceImage<std::uint8_t> difference = denseImage<std::uint8_t>(dev.leftRightDifference, width, height);
-  if (confidenceLr || lrCheck) cuda::rightDisparityIndex(asConst(sum), p.minDisparity, rightIndex, stream);
-  if (confidenceLr) cuda::leftRightDifference(asConst(best), asConst(rightIndex), p.minDisparity, difference, stream);
-  if (lrCheck) {
-    DeviceImage<const std::uint8_t> checkSupport;
-    if (mode == MatchMode::Fused) {
-      const DeviceImage<std::uint8_t> coverage = denseImage<std::uint8_t>(dev.coverage, width, height);
-      cuda::lidarCoverage(s.lidar, p.lidarCoverageRows, coverage, stream);
-      checkSupport = asConst(coverage);
-    }
-    cuda::leftRightCheck(raw, best, asConst(rightIndex), checkSupport, p.minDisparity, p.disp12MaxDiff,
-                   /*keepNoCounterpart=*/mode == MatchMode::Fused, stream);
-  }
-  dev.mark(kChecked);
+  FrameImages frame;
+  reserveImages(plan, frame);
   // The result straight into the caller's device memory, or into ours to be downloaded.
-  const DeviceImage<std::int16_t> filtered =
-      outputOnDevice ? DeviceImage<std::int16_t>{disparity.data, width, height, disparity.stride}
-                     : denseImage<std::int16_t>(dev.disparity, width, height);
-  cuda::medianFilter(asConst(raw), p.medianSize, filtered, stream);
+  frame.filtered = outputOnDevice
+                       ? DeviceImage<std::int16_t>{disparity.data, plan.width, plan.height, disparity.stride}
+                       : denseImage<std::int16_t>(dev.disparity, plan.width, plan.height);
+  uploadCameras(plan, in, inputsOnDevice, frame);
+  if (plan.useLidar) uploadLidar(plan, *in.lidar, frame);
+  dev.mark(kUploaded);
+  censusTransforms(plan, frame);
+  dev.mark(kCensus);
+  if (plan.useLidar) cuda::lidarSupport(frame.costs.lidar, frame.support, dev.stream);
+  dev.mark(kLidar);
+  aggregatePaths(plan, frame);
+  dev.mark(kAggregated);
+  selectDisparity(plan, frame);
+  dev.mark(kSelected);
+  leftRightCheck(plan, frame);
+  dev.mark(kChecked);
+  cuda::medianFilter(asConst(frame.raw), plan.params.medianSize, frame.filtered, dev.stream);
   dev.mark(kFiltered);
-
-  // The confidence's core part, as Matcher::computeConfidence does it on the host.
-  const DeviceImage<std::uint8_t> distance = denseImage<std::uint8_t>(dev.lidarDistance, width, height);
-  const DeviceImage<std::uint8_t> texture = denseImage<std::uint8_t>(dev.texture, width, height);
-  const DeviceImage<std::uint8_t> saturated = denseImage<std::uint8_t>(dev.saturated, width, height);
-  const DeviceImage<std::uint8_t> range = denseImage<std::uint8_t>(dev.disparityRange, width, height);
-  const DeviceImage<std::uint8_t> confidence = denseImage<std::uint8_t>(dev.confidence, width, height);
-  if (p.confidence) {
-    if (!s.useLidar) LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(support.data, 0, pixels, stream));
-    cuda::lidarDistance(asConst(support), denseImage<std::uint8_t>(dev.verticalDistance, width, height), distance,
-                        stream);
-    if (!s.useCamera) {
-      // LiDAR-only: no image, so no texture; no right view, so no counterpart.
-      LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(texture.data, 0, pixels, stream));
-      LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(saturated.data, 0, pixels, stream));
-      LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(difference.data, kNoCounterpartDifference, pixels, stream));
-    } else if (sixteen) {
-      cuda::textureAndSaturation(images16[0], texture, saturated, stream);
-    } else {
-      cuda::textureAndSaturation(images8[0], texture, saturated, stream);
-    }
-    cuda::disparityRange(asConst(filtered), range, stream);
-    const ConfidenceImages inputs{asConst(margin),   asConst(bestCost),  asConst(difference), asConst(distance),
-                                  asConst(texture),  asConst(saturated), asConst(range)};
-    cuda::combineConfidence(inputs, confidenceModel(mode), mode == MatchMode::LidarOnly, p.paths, dev.sigmoid.data(),
-                            asConst(filtered), confidence, stream);
-  }
+  if (plan.confidence) confidence(plan, frame);
   dev.mark(kConfidence);
-
-  // Downloads: the disparity, and what the core reads besides it.
-  if (!outputOnDevice) downloadImage(asConst(filtered), disparity, stream);
-  support_.resize(width, height);
-  if (s.useLidar) {
-    downloadImage(asConst(support), support_.view(), stream);
-  } else {
-    support_.fill(0);
-  }
-  if (p.confidence) {
-    ConfidenceInputs& in = confidenceInputs_;
-    const auto download = [&](DeviceImage<std::uint8_t> from, Image<std::uint8_t>& to) {
-      to.resize(width, height);
-      downloadImage(asConst(from), to.view(), stream);
-    };
-    download(margin, in.margin);
-    in.bestCost.resize(width, height);
-    downloadImage(asConst(bestCost), in.bestCost.view(), stream);
-    download(difference, in.leftRightDifference);
-    download(distance, in.lidarDistance);
-    download(texture, in.texture);
-    download(saturated, in.saturated);
-    download(range, in.disparityRange);
-    download(confidence, confidence_);
-  }
+  downloadResults(plan, frame, disparity, outputOnDevice, out);
   dev.mark(kDownloaded);
-  LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(stream));
-
-  // Kernel time per stage (CUDA events). The costs are computed inside the aggregation, so
-  // censusCost, lidarCost's volume and fuseCosts have no time of their own.
-  timings_.transfers = dev.ms(kStart, kUploaded) + dev.ms(kConfidence, kDownloaded);
-  timings_.census = dev.ms(kUploaded, kCensus);
-  timings_.lidarCost = dev.ms(kCensus, kLidar);
-  timings_.aggregatePaths = dev.ms(kLidar, kAggregated);
-  timings_.selectDisparity = dev.ms(kAggregated, kSelected);
-  timings_.leftRightCheck = dev.ms(kSelected, kChecked);
-  timings_.medianFilter = dev.ms(kChecked, kFiltered);
-  timings_.confidence = dev.ms(kFiltered, kConfidence);
+  LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(dev.stream));
+  recordTimings(out.timings);
 }
 
-namespace {
-
-template <typename T>
-ImageView<const T> downloaded(ImageView<const T> device, int width, int height, Image<T>& host) {
-  host.resize(width, height);
-  LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(host.data(), static_cast<std::size_t>(width) * sizeof(T), device.data,
-                                    static_cast<std::size_t>(device.stride) * sizeof(T),
-                                    static_cast<std::size_t>(width) * sizeof(T), static_cast<std::size_t>(height),
-                                    cudaMemcpyDeviceToHost));
-  return std::as_const(host).view();
+// The buffers every frame uses, whatever its plan (grown only).
+void CudaMatcher::reserveImages(const FramePlan& plan, FrameImages& f) {
+  Device& dev = *device_;
+  const int W = plan.width;
+  const int H = plan.height;
+  f.support = denseImage<std::uint8_t>(dev.support, W, H);
+  f.pathCosts = denseVolume(dev.pathCosts, W, H, plan.D, plan.params.paths);
+  f.sum = denseVolume(dev.sum, W, H, plan.D);
+  f.raw = denseImage<std::int16_t>(dev.rawDisparity, W, H);
+  f.best = denseImage<std::int16_t>(dev.bestIndex, W, H);
+  f.margin = denseImage<std::uint8_t>(dev.margin, W, H);
+  f.bestCost = denseImage<std::uint16_t>(dev.bestCost, W, H);
+  f.rightIndex = denseImage<std::int16_t>(dev.rightIndex, W, H);
+  f.difference = denseImage<std::uint8_t>(dev.leftRightDifference, W, H);
+  f.verticalDistance = denseImage<std::uint8_t>(dev.verticalDistance, W, H);
+  f.distance = denseImage<std::uint8_t>(dev.lidarDistance, W, H);
+  f.texture = denseImage<std::uint8_t>(dev.texture, W, H);
+  f.saturated = denseImage<std::uint8_t>(dev.saturated, W, H);
+  f.range = denseImage<std::uint8_t>(dev.disparityRange, W, H);
+  f.confidence = denseImage<std::uint8_t>(dev.confidence, W, H);
 }
 
-// A gray image in device memory, copied into the host buffer of its depth.
-GrayImageView downloaded(const GrayImageView& device, Image<std::uint8_t>& host8, Image<std::uint16_t>& host16) {
-  if (device.empty()) return {};
-  if (!device.gray8.empty()) return downloaded(device.gray8, device.width(), device.height(), host8);
-  return downloaded(device.gray16, device.width(), device.height(), host16);
-}
-
-}  // namespace
-
-void CudaMatcher::runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
-                              MemorySpace disparitySpace) {
-  const int width = disparity.width;
-  const int height = disparity.height;
-  HostCopies& host = *hostCopies_;
-  // The LiDAR samples come back to be validated and bucketed by LidarPoints, which names a
-  // sample outside the image or behind the camera (12 bytes a point).
-  LidarPoints points;
-  if (mode != MatchMode::StereoOnly) {
-    host.samples.resize(frame.lidarCount);
-    LIDAR_SGM_CUDA_CHECK(cudaMemcpy(host.samples.data(), frame.lidar, frame.lidarCount * sizeof(LidarSample),
-                                    cudaMemcpyDeviceToHost));
-    points = LidarPoints(width, height, host.samples);
-  }
-  const LidarPoints* lidar = mode == MatchMode::StereoOnly ? nullptr : &points;
-  const bool outputOnDevice = disparitySpace == MemorySpace::Device;
-
-  if (params_.scale != 1.0f) {
-    // The half-scale resampling is the core's, on the host: match host copies.
-    const GrayImageView left = mode == MatchMode::LidarOnly ? GrayImageView()
-                                                            : downloaded(frame.left, host.left8, host.left16);
-    const GrayImageView right = downloaded(frame.right, host.right8, host.right16);
-    host.disparity.resize(width, height);
-    compute(left, right, lidar, host.disparity.view());
-    if (outputOnDevice) {
-      LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(disparity.data, static_cast<std::size_t>(disparity.stride) * sizeof(std::int16_t),
-                                        host.disparity.data(), static_cast<std::size_t>(width) * sizeof(std::int16_t),
-                                        static_cast<std::size_t>(width) * sizeof(std::int16_t),
-                                        static_cast<std::size_t>(height), cudaMemcpyHostToDevice));
+void CudaMatcher::uploadCameras(const FramePlan& plan, const FrameInputs& in, bool inputsOnDevice, FrameImages& f) {
+  Device& dev = *device_;
+  const int W = plan.width;
+  const int H = plan.height;
+  const GrayImageView* cameras[3] = {&in.left, &in.right, &in.up};
+  f.sixteen = plan.useCameras() && in.left.gray8.empty();
+  for (int i = 0; i < plan.cameras; ++i) {
+    const GrayImageView& camera = *cameras[i];
+    if (inputsOnDevice) {
+      f.images8[i] = DeviceImage<const std::uint8_t>{camera.gray8.data, W, H, camera.gray8.stride};
+      f.images16[i] = DeviceImage<const std::uint16_t>{camera.gray16.data, W, H, camera.gray16.stride};
+    } else if (f.sixteen) {
+      uploadImage(camera.gray16, dev.images16[i], dev.stream);
+      f.images16[i] = DeviceImage<const std::uint16_t>{dev.images16[i].data(), W, H, W};
     } else {
-      for (int y = 0; y < height; ++y) {
-        std::copy(host.disparity.data() + static_cast<std::size_t>(y) * width,
-                  host.disparity.data() + static_cast<std::size_t>(y + 1) * width, disparity.row(y));
-      }
+      uploadImage(camera.gray8, dev.images8[i], dev.stream);
+      f.images8[i] = DeviceImage<const std::uint8_t>{dev.images8[i].data(), W, H, W};
     }
-    return;
   }
-  // The confidence, too, is computed on the device (computesConfidence()).
-  runStages(params_, frame.left, frame.right, nullptr, 0, lidar, mode, disparity, /*inputsOnDevice=*/true,
-            outputOnDevice);
+  CostSettings& s = f.costs;
+  s.width = W;
+  s.height = H;
+  s.numDisparities = plan.D;
+  s.minDisparity = plan.minDisparity;
+  s.useCamera = plan.useCameras();
+  s.useLidar = plan.useLidar;
+  s.censusScale = plan.censusScale;
+  s.ratio16 = plan.ratio16;
+}
+
+// The LiDAR points as LidarPoints keeps them, the cost table and, with an adaptive alpha, the
+// per-pixel weights of Eq. 5 (computed on the host by the code every backend shares).
+void CudaMatcher::uploadLidar(const FramePlan& plan, const LidarPoints& lidar, FrameImages& f) {
+  Device& dev = *device_;
+  const Parameters& p = plan.params;
+  CostSettings& s = f.costs;
+  cuda::uploadLidar(lidar, dev.pixelStart, dev.disparities16, dev.stream);
+  s.lidar = DeviceLidar{dev.pixelStart.data(), dev.disparities16.data(), plan.width, plan.height};
+  if (dev.tableSigma != p.sigma || dev.tableCap != p.lidarCostCap) {
+    dev.hostTable = LidarCostTable(p.sigma, p.lidarCostCap);
+    dev.tableSigma = p.sigma;
+    dev.tableCap = p.lidarCostCap;
+    uploadVector(dev.hostTable.entries(), dev.table, dev.stream);
+  }
+  s.table = DeviceCostTable{dev.table.data(), static_cast<int>(dev.hostTable.entries().size()), dev.hostTable.cap()};
+  if (plan.mode == MatchMode::Fused && !plan.adaptiveAlpha) s.alphaWeight = plan.alphaWeight;
+  if (plan.adaptiveAlpha) {
+    dev.hostWeights.resize(plan.width, plan.height);
+    lidarWeights(lidar, p, dev.hostWeights.view());
+    uploadImage(std::as_const(dev.hostWeights).view(), dev.weights, dev.stream);
+    s.weights = DeviceImage<const std::uint16_t>{dev.weights.data(), plan.width, plan.height, plan.width};
+  }
+  s.stereoCostWithoutLidar = p.stereoCostWithoutLidar;
+}
+
+void CudaMatcher::censusTransforms(const FramePlan& plan, FrameImages& f) {
+  Device& dev = *device_;
+  for (int i = 0; i < plan.cameras; ++i) {
+    f.census[i] = denseImage<std::uint64_t>(dev.census[i], plan.width, plan.height);
+    if (f.sixteen) {
+      cuda::censusTransform(f.images16[i], plan.params.censusType, f.census[i], dev.stream);
+    } else {
+      cuda::censusTransform(f.images8[i], plan.params.censusType, f.census[i], dev.stream);
+    }
+  }
+  if (!plan.useCameras()) return;
+  f.costs.leftCensus = asConst(f.census[0]);
+  f.costs.rightCensus = asConst(f.census[1]);
+  if (plan.upCamera()) f.costs.upCensus = asConst(f.census[2]);
+}
+
+// Eq. 1 with the matching cost (C_S, C_S3, C_L or Eq. 5) computed inside the recursion.
+void CudaMatcher::aggregatePaths(const FramePlan& plan, FrameImages& f) {
+  const Parameters& p = plan.params;
+  cuda::aggregatePaths(f.costs, p.P1, p.P2, p.paths, f.pathCosts, device_->stream);
+}
+
+// S, the winners and the confidence inputs that need S, read before the check invalidates.
+void CudaMatcher::selectDisparity(const FramePlan& plan, FrameImages& f) {
+  const Parameters& p = plan.params;
+  cudaStream_t stream = device_->stream;
+  cuda::selectDisparity(asConst(f.pathCosts), p.paths, f.sum, plan.minDisparity, p.uniquenessRatio, p.subpixel, f.raw,
+                        f.best, stream);
+  if (plan.confidence) cuda::peakRatioMargin(asConst(f.sum), asConst(f.best), f.margin, f.bestCost, stream);
+}
+
+// The right view's winners, read diagonally from S, serve the confidence's left-right difference
+// (before the check) and the check itself.
+void CudaMatcher::leftRightCheck(const FramePlan& plan, FrameImages& f) {
+  Device& dev = *device_;
+  if (plan.confidenceLr || plan.lrCheck) {
+    cuda::rightDisparityIndex(asConst(f.sum), plan.minDisparity, f.rightIndex, dev.stream);
+  }
+  if (plan.confidenceLr) {
+    cuda::leftRightDifference(asConst(f.best), asConst(f.rightIndex), plan.minDisparity, f.difference, dev.stream);
+  }
+  if (!plan.lrCheck) return;
+  DeviceImage<const std::uint8_t> covered;
+  if (plan.lrCheckTrustsLidar) {
+    f.coverage = denseImage<std::uint8_t>(dev.coverage, plan.width, plan.height);
+    cuda::lidarCoverage(f.costs.lidar, plan.params.lidarCoverageRows, f.coverage, dev.stream);
+    covered = asConst(f.coverage);
+  }
+  cuda::leftRightCheck(f.raw, f.best, asConst(f.rightIndex), covered, plan.minDisparity, plan.params.disp12MaxDiff,
+                       /*keepNoCounterpart=*/plan.lrCheckTrustsLidar, dev.stream);
+}
+
+// The confidence's core part, as the core computes it on the host (core/confidence_inputs.hpp).
+void CudaMatcher::confidence(const FramePlan& plan, FrameImages& f) {
+  Device& dev = *device_;
+  cudaStream_t stream = dev.stream;
+  const std::size_t pixels = static_cast<std::size_t>(plan.width) * plan.height;
+  if (!plan.useLidar) LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(f.support.data, 0, pixels, stream));
+  cuda::lidarDistance(asConst(f.support), f.verticalDistance, f.distance, stream);
+  if (!plan.useCameras()) {
+    // LiDAR-only: no image, so no texture; no right view, so no counterpart.
+    LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(f.texture.data, 0, pixels, stream));
+    LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(f.saturated.data, 0, pixels, stream));
+    LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(f.difference.data, kNoCounterpartDifference, pixels, stream));
+  } else if (f.sixteen) {
+    cuda::textureAndSaturation(f.images16[0], f.texture, f.saturated, stream);
+  } else {
+    cuda::textureAndSaturation(f.images8[0], f.texture, f.saturated, stream);
+  }
+  cuda::disparityRange(asConst(f.filtered), f.range, stream);
+  const ConfidenceImages inputs{asConst(f.margin),  asConst(f.bestCost),  asConst(f.difference), asConst(f.distance),
+                                asConst(f.texture), asConst(f.saturated), asConst(f.range)};
+  cuda::combineConfidence(inputs, confidenceModel(plan.mode), plan.mode == MatchMode::LidarOnly, plan.params.paths,
+                          dev.sigmoid.data(), asConst(f.filtered), f.confidence, stream);
+}
+
+// The disparity, and what the core reads besides it.
+void CudaMatcher::downloadResults(const FramePlan& plan, const FrameImages& f, ImageView<std::int16_t> disparity,
+                                  bool outputOnDevice, FrameResults& out) {
+  cudaStream_t stream = device_->stream;
+  const int W = plan.width;
+  const int H = plan.height;
+  if (!outputOnDevice) downloadImage(asConst(f.filtered), disparity, stream);
+  out.support.resize(W, H);
+  if (plan.useLidar) {
+    downloadImage(asConst(f.support), out.support.view(), stream);
+  } else {
+    out.support.fill(0);
+  }
+  if (!plan.confidence) return;
+  ConfidenceInputs& in = out.confidenceInputs;
+  const auto download = [&](DeviceImage<std::uint8_t> from, Image<std::uint8_t>& to) {
+    to.resize(W, H);
+    downloadImage(asConst(from), to.view(), stream);
+  };
+  download(f.margin, in.margin);
+  in.bestCost.resize(W, H);
+  downloadImage(asConst(f.bestCost), in.bestCost.view(), stream);
+  download(f.difference, in.leftRightDifference);
+  download(f.distance, in.lidarDistance);
+  download(f.texture, in.texture);
+  download(f.saturated, in.saturated);
+  download(f.range, in.disparityRange);
+  download(f.confidence, out.confidence);
+}
+
+// Kernel time per stage (CUDA events). The costs are computed inside the aggregation, so
+// censusCost, lidarCost's volume and fuseCosts have no time of their own.
+void CudaMatcher::recordTimings(StageTimings& timings) const {
+  const Device& dev = *device_;
+  timings.transfers = dev.ms(kStart, kUploaded) + dev.ms(kConfidence, kDownloaded);
+  timings.census = dev.ms(kUploaded, kCensus);
+  timings.lidarCost = dev.ms(kCensus, kLidar);
+  timings.aggregatePaths = dev.ms(kLidar, kAggregated);
+  timings.selectDisparity = dev.ms(kAggregated, kSelected);
+  timings.leftRightCheck = dev.ms(kSelected, kChecked);
+  timings.medianFilter = dev.ms(kChecked, kFiltered);
+  timings.confidence = dev.ms(kFiltered, kConfidence);
 }
 
 }  // namespace cuda

@@ -4,37 +4,48 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
-#include "lidar_sgm/core/matcher.hpp"
+#include "core/backend.hpp"
 
 namespace lidar_sgm {
 namespace cuda {
 
-class CudaMatcher final : public Matcher {
+class CudaMatcher final : public MatcherBackend {
  public:
-  explicit CudaMatcher(const Parameters& params);
+  CudaMatcher();
   ~CudaMatcher() override;
   Backend backend() const override { return Backend::Cuda; }
-
- protected:
+  void run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+           FrameResults& out) override;
   /// The confidence's core part runs on the device too (confidence.cu).
   bool computesConfidence() const override { return true; }
-  void run(const Parameters& params, const GrayImageView& left, const GrayImageView& right, const LidarPoints* lidar,
-           MatchMode mode, ImageView<std::int16_t> disparity) override;
-  void runWithUpCamera(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                       const GrayImageView& up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                       ImageView<std::int16_t> disparity) override;
-  void runOnDevice(const DeviceFrame& frame, MatchMode mode, ImageView<std::int16_t> disparity,
-                   MemorySpace disparitySpace) override;
+
+  // Frames in device memory (device_frame.cpp, and runStages with the inputs on the device).
+  bool readsDeviceMemory() const override { return true; }
+  void copyToHost(const DeviceFrame& frame, bool images, DeviceFrameCopy& host) override;
+  void copyToDevice(ImageView<const std::int16_t> host, ImageView<std::int16_t> device) override;
+  void runOnDevice(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
+                   MemorySpace disparitySpace, FrameResults& out) override;
 
  private:
-  struct Device;  // device buffers, stream and events (no CUDA type in this header)
-  void runStages(const Parameters& params, const GrayImageView& left, const GrayImageView& right,
-                 const GrayImageView* up, int ratio16, const LidarPoints* lidar, MatchMode mode,
-                 ImageView<std::int16_t> disparity, bool inputsOnDevice = false, bool outputOnDevice = false);
-  struct HostCopies;
+  struct Device;       // device buffers, stream and events (no CUDA type in this header)
+  struct FrameImages;  // one frame's device images and volumes, as the stages hand them on
+  void runStages(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity, FrameResults& out,
+                 bool inputsOnDevice, bool outputOnDevice);
+  void reserveImages(const FramePlan& plan, FrameImages& frame);
+  void uploadCameras(const FramePlan& plan, const FrameInputs& in, bool inputsOnDevice, FrameImages& frame);
+  void uploadLidar(const FramePlan& plan, const LidarPoints& lidar, FrameImages& frame);
+  void censusTransforms(const FramePlan& plan, FrameImages& frame);
+  void aggregatePaths(const FramePlan& plan, FrameImages& frame);
+  void selectDisparity(const FramePlan& plan, FrameImages& frame);
+  void leftRightCheck(const FramePlan& plan, FrameImages& frame);
+  void confidence(const FramePlan& plan, FrameImages& frame);
+  void downloadResults(const FramePlan& plan, const FrameImages& frame, ImageView<std::int16_t> disparity,
+                       bool outputOnDevice, FrameResults& out);
+  void recordTimings(StageTimings& timings) const;
+
   std::unique_ptr<Device> device_;
-  std::unique_ptr<HostCopies> hostCopies_;
 };
 
 /// "" when a CUDA device can run this build's kernels, else why not (no device, no driver ...).

@@ -1,0 +1,98 @@
+// The matching cost C of a row's pixels, computed on the fly in the sweep up: C_L from the points
+// around each pixel, C_S (or Triple-SGM's C_S3) from the census images, fused by Eq. 5 while the
+// pixel's costs are still in the L1 cache. No cost volume but C itself is ever stored.
+#include <cstring>
+
+#include "backends/cpu/cpu_kernels.hpp"
+#include "backends/cpu/cpu_matcher.hpp"
+
+namespace lidar_sgm {
+namespace cpu {
+
+void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* cost, Worker& w) {
+  const FramePlan& plan = f.plan;
+  const Parameters& p = plan.params;
+  Lap lap;
+  std::uint8_t* lidar = plan.mode == MatchMode::LidarOnly ? cost : w.lidar.data();
+  if (plan.useLidar) {
+    lidarCostRange(f, y, x0, x1, lidar);
+    lap(w.lidarCostMs);
+  }
+  if (!plan.useCameras()) return;
+  if (plan.upCamera()) {
+    tripleCostRange(f, y, x0, x1, lidar, cost, w, lap);
+    return;
+  }
+  const std::uint64_t* leftRow = leftCensus_.view().row(y);
+  const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
+  if (plan.mode == MatchMode::Fused) {
+    const std::uint16_t* weights = plan.adaptiveAlpha ? lidarWeights_.view().row(y) : nullptr;
+    censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1,
+                       plan.minDisparity, plan.D, lidar, touched_.view().row(y), weights, plan.alphaWeight,
+                       p.stereoCostWithoutLidar, cost);
+  } else {
+    censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1, plan.minDisparity,
+                  plan.D, cost);
+  }
+  lap(w.censusCostMs);
+}
+
+// Most pixels have no point around them: C_L = 0 there, without looking for points. The fused
+// row kernel reads `touched` itself and needs no zeros.
+void CpuMatcher::lidarCostRange(const Frame& f, int y, int x0, int x1, std::uint8_t* lidar) {
+  const FramePlan& plan = f.plan;
+  const bool zeroUntouched = plan.mode == MatchMode::LidarOnly || plan.upCamera();
+  std::uint8_t* support = f.out.support.view().row(y);
+  const std::uint8_t* touched = touched_.view().row(y);
+  for (int x = x0; x < x1; ++x) {
+    std::uint8_t* c = lidar + static_cast<std::size_t>(x - x0) * plan.D;
+    if (touched[x] != 0) {
+      lidarCostPixel(*f.lidar, table_, x, y, plan.minDisparity, plan.D, c);
+    } else if (zeroUntouched) {
+      std::memset(c, 0, static_cast<std::size_t>(plan.D));
+    }
+    support[x] = touched[x];
+  }
+}
+
+// Triple-SGM: the camera cost C_S3 = (C_S + C_V + 1) >> 1 takes C_S's place in Eq. 5.
+void CpuMatcher::tripleCostRange(const Frame& f, int y, int x0, int x1, const std::uint8_t* lidar,
+                                 std::uint8_t* cost, Worker& w, Lap& lap) {
+  const FramePlan& plan = f.plan;
+  const Parameters& p = plan.params;
+  const std::size_t D = static_cast<std::size_t>(plan.D);
+  const std::size_t n = static_cast<std::size_t>(x1 - x0) * D;
+  const std::uint64_t* leftRow = leftCensus_.view().row(y);
+  const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
+  std::uint8_t* camera = plan.mode == MatchMode::Fused ? w.stereo.data() : cost;
+  censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1, plan.minDisparity,
+                plan.D, camera);
+  lap(w.censusCostMs);
+  verticalCensusCostRow(leftRow, upCensus_.view(), y, x0, x1, plan.ratio16, plan.minDisparity, plan.D,
+                        plan.censusScale, w.vertical.data());
+  combineCameraCostRow(camera, w.vertical.data(), n, camera);
+  lap(w.verticalCostMs);
+  if (plan.mode != MatchMode::Fused) return;
+  if (!plan.adaptiveAlpha) {
+    fuseCostRow(lidar, camera, n, plan.alphaWeight, cost);
+  } else {
+    const std::uint16_t* weights = lidarWeights_.view().row(y);
+    for (int x = x0; x < x1; ++x) {
+      const auto offset = static_cast<std::size_t>(x - x0) * D;
+      fuseCostRow(lidar + offset, camera + offset, D, weights[x], cost + offset);
+    }
+  }
+  if (p.stereoCostWithoutLidar) {
+    // Where no point touches the pixel the LiDAR knows nothing: C = C_S3.
+    const std::uint8_t* touched = touched_.view().row(y);
+    for (int x = x0; x < x1; ++x) {
+      if (touched[x] != 0) continue;
+      const auto offset = static_cast<std::size_t>(x - x0) * D;
+      std::memcpy(cost + offset, camera + offset, D);
+    }
+  }
+  lap(w.fuseMs);
+}
+
+}  // namespace cpu
+}  // namespace lidar_sgm

@@ -1,0 +1,245 @@
+// The cpu backend's two sweeps over the image (cpu_matcher.hpp says why this shape): the sweep up
+// stores C and checkpoints the upward paths; the sweep down, chunk by chunk, recomputes the
+// upward paths from the checkpoints, runs the downward and horizontal paths, sums S and selects
+// the winners in the same visit of each pixel's S.
+#include <algorithm>
+#include <chrono>
+
+#include "backends/cpu/cpu_kernels.hpp"
+#include "backends/cpu/cpu_matcher.hpp"
+#include "backends/cpu/parallel.hpp"
+
+namespace lidar_sgm {
+namespace cpu {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// The paths of each sweep as (dx, dy): the previous pixel on the path is (x - dx, y - dy).
+struct Step {
+  int dx;
+};
+constexpr Step kUpward[3] = {{0}, {1}, {-1}};    // (0,-1), then with 8 paths (1,-1), (-1,-1)
+constexpr Step kDownward[3] = {{0}, {1}, {-1}};  // (0,1), then with 8 paths (1,1), (-1,1)
+
+}  // namespace
+
+void CpuMatcher::aggregateAndSelect(const Frame& f) {
+  const auto t0 = Clock::now();
+  if (f.paths8) {
+    sweepUp<std::uint8_t>(f);
+    sweepDown<std::uint8_t>(f);
+  } else {
+    sweepUp<std::uint16_t>(f);
+    sweepDown<std::uint16_t>(f);
+  }
+  const double sweeps = msBetween(t0, Clock::now());
+  // Worker 0's clocks split the sweeps' wall time into the stages it streamed.
+  const Worker& w0 = workers_[0];
+  StageTimings& timings = f.out.timings;
+  timings.censusCost = w0.censusCostMs;
+  timings.verticalCensusCost = w0.verticalCostMs;
+  timings.lidarCost = w0.lidarCostMs;
+  timings.fuseCosts = w0.fuseMs;
+  timings.selectDisparity = w0.selectMs;
+  timings.aggregatePaths =
+      std::max(0.0, sweeps - w0.censusCostMs - w0.verticalCostMs - w0.lidarCostMs - w0.fuseMs - w0.selectMs);
+}
+
+template <typename PathT>
+void CpuMatcher::sweepUp(const Frame& f) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  const int D = f.plan.D;
+  const std::size_t rowSlots = f.rowSlots;
+  const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
+  const Parameters& p = f.plan.params;
+#pragma omp parallel num_threads(f.threads)
+  {
+    const int team = teamSize();
+    const int t = threadIndex();
+    const int x0 = partBegin(W, team, t);
+    const int x1 = partBegin(W, team, t + 1);
+    Worker& w = workers_[static_cast<std::size_t>(t)];
+    for (int i = 0; i < H; ++i) {
+      const int y = H - 1 - i;
+      std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
+      costRange(f, y, x0, x1, cost + static_cast<std::size_t>(x0) * D, w);
+      for (int k = 0; k < f.verticalPaths; ++k) {
+        PathT* current = as<PathT>(pathRows_, (2 * k + i % 2) * rowSlots);
+        const PathT* previous = i == 0 ? nullptr : as<PathT>(pathRows_, (2 * k + (i + 1) % 2) * rowSlots);
+        std::uint16_t* currentMin = pathMins_.data() + static_cast<std::size_t>(2 * k + i % 2) * W;
+        const std::uint16_t* previousMin = pathMins_.data() + static_cast<std::size_t>(2 * k + (i + 1) % 2) * W;
+        pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2, current,
+                            currentMin);
+        // The first row of every chunk but the top one: the sweep down restarts the upward paths
+        // of the chunk above from here.
+        if (y > 0 && y % kChunkRows == 0) {
+          const std::size_t c = static_cast<std::size_t>(y / kChunkRows - 1) * f.verticalPaths + k;
+          std::copy(current + x0 * slot, current + x1 * slot, as<PathT>(checkpoints_, c * rowSlots) + x0 * slot);
+          std::copy(currentMin + x0, currentMin + x1, checkpointMins_.data() + c * W + x0);
+        }
+      }
+      // Diagonal paths read the neighbouring columns of the previous row: wait for them.
+      if (f.verticalPaths > 1) {
+#pragma omp barrier
+      }
+    }
+  }
+}
+
+// Chunk buffers of each parity: paths [0, vp) downward, [vp, 2 vp) upward (recomputed),
+// kChunkRows rows each (vp = verticalPaths).
+template <typename PathT>
+PathT* CpuMatcher::chunkPath(const Frame& f, int parity, int k, int r) {
+  const std::size_t row = (static_cast<std::size_t>(parity) * 2 * f.verticalPaths + k) * kChunkRows + r;
+  return as<PathT>(chunkPaths_, row * f.rowSlots);
+}
+
+std::uint16_t* CpuMatcher::chunkMin(const Frame& f, int parity, int k, int r) {
+  const std::size_t row = (static_cast<std::size_t>(parity) * 2 * f.verticalPaths + k) * kChunkRows + r;
+  return chunkMins_.data() + row * f.plan.width;
+}
+
+// The sweep down, one chunk of kChunkRows rows at a time. One barrier per chunk (per row only for
+// the diagonals of 8 paths): lock step per row would stall whenever another process takes a core.
+template <typename PathT>
+void CpuMatcher::sweepDown(const Frame& f) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+#pragma omp parallel num_threads(f.threads)
+  {
+    const int team = teamSize();
+    const int t = threadIndex();
+    const int x0 = partBegin(W, team, t);
+    const int x1 = partBegin(W, team, t + 1);
+    Worker& w = workers_[static_cast<std::size_t>(t)];
+    for (int chunk = 0; chunk * kChunkRows < H; ++chunk) {
+      // Stage 1, this thread's columns: the vertical (and diagonal) paths of the chunk's rows.
+      upwardPathsOfChunk<PathT>(f, chunk, x0, x1);
+      downwardPathsOfChunk<PathT>(f, chunk, x0, x1);
+#pragma omp barrier
+      // Stage 2, whole rows split among the threads: the horizontal paths need the row's every
+      // cost, then S (all paths) and the winners, and the right view's winners, which read S
+      // diagonally.
+      const int rows = std::min(kChunkRows, H - chunk * kChunkRows);
+      selectChunkRows<PathT>(f, chunk, partBegin(rows, team, t), partBegin(rows, team, t + 1), w);
+      // No barrier here: the next chunk fills the other parity's buffers, and the barrier after
+      // its stage 1 keeps this chunk's buffers alive until every thread has finished stage 2.
+    }
+  }
+}
+
+// The upward paths of the chunk's rows again, bottom to top from the checkpoint the sweep up left
+// below the chunk (the costs were stored, the paths not: a full volume of them would cost as much
+// memory as the costs). Called by every thread of the team (it holds barriers).
+template <typename PathT>
+void CpuMatcher::upwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  const int D = f.plan.D;
+  const Parameters& p = f.plan.params;
+  const int vp = f.verticalPaths;
+  const int yBegin = chunk * kChunkRows;
+  const int rows = std::min(kChunkRows, H - yBegin);
+  const int parity = chunk % 2;
+  for (int r = rows - 1; r >= 0; --r) {
+    const int y = yBegin + r;
+    const std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
+    for (int k = 0; k < vp; ++k) {
+      const std::size_t c = static_cast<std::size_t>(chunk) * vp + k;
+      const PathT* previous = y == H - 1        ? nullptr
+                              : r == rows - 1 ? as<PathT>(checkpoints_, c * f.rowSlots)
+                                              : chunkPath<PathT>(f, parity, vp + k, r + 1);
+      const std::uint16_t* previousMin =
+          r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(f, parity, vp + k, r + 1);
+      pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
+                          chunkPath<PathT>(f, parity, vp + k, r), chunkMin(f, parity, vp + k, r));
+    }
+    if (vp > 1) {
+#pragma omp barrier
+    }
+  }
+}
+
+// The downward paths of the chunk's rows, top to bottom, continuing the previous chunk's (the
+// other parity). Called by every thread of the team (it holds barriers).
+template <typename PathT>
+void CpuMatcher::downwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
+  const int W = f.plan.width;
+  const int D = f.plan.D;
+  const Parameters& p = f.plan.params;
+  const int vp = f.verticalPaths;
+  const int yBegin = chunk * kChunkRows;
+  const int rows = std::min(kChunkRows, f.plan.height - yBegin);
+  const int parity = chunk % 2;
+  for (int r = 0; r < rows; ++r) {
+    const int y = yBegin + r;
+    const std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
+    for (int k = 0; k < vp; ++k) {
+      const PathT* previous = y == 0   ? nullptr
+                              : r == 0 ? chunkPath<PathT>(f, 1 - parity, k, kChunkRows - 1)
+                                       : chunkPath<PathT>(f, parity, k, r - 1);
+      const std::uint16_t* previousMin =
+          r == 0 ? chunkMin(f, 1 - parity, k, kChunkRows - 1) : chunkMin(f, parity, k, r - 1);
+      pathRowFromPrevious(cost, 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1, p.P2,
+                          chunkPath<PathT>(f, parity, k, r), chunkMin(f, parity, k, r));
+    }
+    if (vp > 1) {
+#pragma omp barrier
+    }
+  }
+}
+
+// Rows r0 .. r1-1 of the chunk: the horizontal paths, then S and the winners, the right view's
+// winners and the confidence inputs that need S (from the winners before the left-right check),
+// all in the same pass over each pixel's S.
+template <typename PathT>
+void CpuMatcher::selectChunkRows(const Frame& f, int chunk, int r0, int r1, Worker& w) {
+  const FramePlan& plan = f.plan;
+  const Parameters& p = plan.params;
+  const int W = plan.width;
+  const int D = plan.D;
+  const int parity = chunk % 2;
+  ConfidenceInputs& confidence = f.out.confidenceInputs;
+  PathT* rightward = as<PathT>(w.rightward);
+  PathT* leftward = as<PathT>(w.leftward);
+  const PathT* paths[8];
+  for (int r = r0; r < r1; ++r) {
+    const int y = chunk * kChunkRows + r;
+    pathRowsHorizontal(cost_.data() + static_cast<std::size_t>(y) * W * D, W, D, p.P1, p.P2, rightward, leftward);
+    int count = 0;
+    for (int k = 0; k < f.verticalPaths; ++k) {
+      paths[count++] = chunkPath<PathT>(f, parity, k, r);
+      paths[count++] = chunkPath<PathT>(f, parity, f.verticalPaths + k, r);
+    }
+    paths[count++] = rightward;
+    paths[count++] = leftward;
+    const auto s0 = Clock::now();
+    WinnerExtras extras;
+    extras.width = W;
+    extras.pixelTotal = true;  // nothing reads the row's S after the selection
+    if (plan.lrCheck || plan.confidenceLr) {
+      extras.rightScratch = w.rightScratch.data();
+      extras.rightIndex = rightIndex_.view().row(y);
+    }
+    if (plan.confidence) {
+      extras.margin = confidence.margin.view().row(y);
+      extras.bestCost = confidence.bestCost.view().row(y);
+    }
+    sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, plan.minDisparity, p.uniquenessRatio, p.subpixel,
+                 w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y), &extras);
+    if (plan.confidenceLr) {
+      leftRightDifferenceRow(bestIndex_.view().row(y), rightIndex_.view().row(y), W, plan.minDisparity,
+                             confidence.leftRightDifference.view().row(y));
+    }
+    w.selectMs += msBetween(s0, Clock::now());
+  }
+}
+
+}  // namespace cpu
+}  // namespace lidar_sgm

@@ -1,0 +1,54 @@
+// Frames given in device memory (Matcher::computeOnDevice): the copies the core asks for, to
+// validate the LiDAR samples on the host and to run the half-scale mode's resampling there.
+#include <cstddef>
+#include <utility>
+
+#include <cuda_runtime_api.h>
+
+#include "backends/cuda/cuda_error.hpp"
+#include "backends/cuda/cuda_matcher.hpp"
+
+namespace lidar_sgm {
+namespace cuda {
+namespace {
+
+template <typename T>
+ImageView<const T> downloaded(ImageView<const T> device, int width, int height, Image<T>& host) {
+  host.resize(width, height);
+  LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(host.data(), static_cast<std::size_t>(width) * sizeof(T), device.data,
+                                    static_cast<std::size_t>(device.stride) * sizeof(T),
+                                    static_cast<std::size_t>(width) * sizeof(T), static_cast<std::size_t>(height),
+                                    cudaMemcpyDeviceToHost));
+  return std::as_const(host).view();
+}
+
+// A gray image in device memory, copied into the host buffer of its depth.
+GrayImageView downloaded(const GrayImageView& device, Image<std::uint8_t>& host8, Image<std::uint16_t>& host16) {
+  if (device.empty()) return {};
+  if (!device.gray8.empty()) return downloaded(device.gray8, device.width(), device.height(), host8);
+  return downloaded(device.gray16, device.width(), device.height(), host16);
+}
+
+}  // namespace
+
+void CudaMatcher::copyToHost(const DeviceFrame& frame, bool images, DeviceFrameCopy& host) {
+  if (frame.lidar != nullptr && frame.lidarCount > 0) {
+    host.samples.resize(frame.lidarCount);
+    LIDAR_SGM_CUDA_CHECK(cudaMemcpy(host.samples.data(), frame.lidar, frame.lidarCount * sizeof(LidarSample),
+                                    cudaMemcpyDeviceToHost));
+  }
+  if (images) {
+    host.left = downloaded(frame.left, host.left8, host.left16);
+    host.right = downloaded(frame.right, host.right8, host.right16);
+  }
+}
+
+void CudaMatcher::copyToDevice(ImageView<const std::int16_t> host, ImageView<std::int16_t> device) {
+  const std::size_t rowBytes = static_cast<std::size_t>(host.width) * sizeof(std::int16_t);
+  LIDAR_SGM_CUDA_CHECK(cudaMemcpy2D(device.data, static_cast<std::size_t>(device.stride) * sizeof(std::int16_t),
+                                    host.data, static_cast<std::size_t>(host.stride) * sizeof(std::int16_t), rowBytes,
+                                    static_cast<std::size_t>(host.height), cudaMemcpyHostToDevice));
+}
+
+}  // namespace cuda
+}  // namespace lidar_sgm
