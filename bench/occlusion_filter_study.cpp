@@ -23,8 +23,8 @@
 #include "lidar_sgm/eval/metrics.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
-#include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/io/kitti_bin.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 #include "lidar_sgm/synth/encoding.hpp"
 #include "lidar_sgm/synth/frame.hpp"
@@ -168,7 +168,7 @@ void kitti(const std::string& dir) {
     const cv::Mat left = io::readGrayImage(dir + "/image_2/" + name + ".png");
     const cv::Mat right = io::readGrayImage(dir + "/image_3/" + name + ".png");
     const auto calib = io::readKittiCalibration(dir + "/calib/" + name + ".txt", left.cols, left.rows);
-    const auto scan = io::readCloud(dir + "/velodyne/" + name + ".bin");
+    const auto scan = io::readKittiScan(dir + "/velodyne/" + name + ".bin");
     std::vector<Eigen::Vector3f> points;
     for (const auto& p : scan) points.emplace_back(p.x, p.y, p.z);
     geometry::ProjectionOptions unfiltered;

@@ -16,8 +16,8 @@
 #include "thread_cpu.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
-#include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/io/kitti_bin.hpp"
 #include "lidar_sgm/pipeline/pair_orientation.hpp"
 
 namespace {
@@ -60,9 +60,10 @@ int run(int argc, char** argv) {
   int refused[2][2] = {};
   std::vector<double> ms[2];
   for (const std::string& name : names) {
-    const pcl::PointCloud<pcl::PointXYZI> cloud = lidar_sgm::io::readCloud((dir / "velodyne" / (name + ".bin")).string());
+    const std::vector<lidar_sgm::io::KittiPoint> scan =
+        lidar_sgm::io::readKittiScan((dir / "velodyne" / (name + ".bin")).string());
     std::vector<Eigen::Vector3f> points;
-    for (const auto& p : cloud) points.emplace_back(p.x, p.y, p.z);
+    for (const auto& p : scan) points.emplace_back(p.x, p.y, p.z);
     const cv::Mat left = lidar_sgm::io::readGrayImage((dir / "image_2" / (name + ".png")).string());
     const cv::Mat right = lidar_sgm::io::readGrayImage((dir / "image_3" / (name + ".png")).string());
     calibration.width = left.cols;

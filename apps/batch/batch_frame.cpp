@@ -80,8 +80,9 @@ std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vecto
   for (const sequence::Frame& frame : frames) {
     if (frame.left.empty() || uses[frame.calib] < 2 || sizes.count(frame.calib) > 0) continue;
     try {
-      const cv::Mat image = io::readImage(frame.left);
-      sizes[frame.calib] = {image.cols, image.rows, frame.left};
+      // A PNG's size comes from its header: the frame decodes the image again when it runs.
+      const cv::Size size = io::imageSize(frame.left);
+      sizes[frame.calib] = {size.width, size.height, frame.left};
     } catch (const std::exception&) {
       // An unreadable image fails its own frame; the next one gives the size.
     }

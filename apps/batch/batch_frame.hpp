@@ -30,9 +30,10 @@ struct CalibrationImage {
 };
 
 /// For each calibration file that two or more of `frames` share (a sequence's calib.txt), the size
-/// of the first of their left images (in `frames` order) that can be read. One calibration fits one
-/// image size: a frame of another size is refused rather than densified with intrinsics that are
-/// not its own (KITTI's odometry calib.txt carries no size to check against).
+/// of the first of their left images (in `frames` order) whose size can be read (io::imageSize: a
+/// PNG's from its header, without decoding it). One calibration fits one image size: a frame of
+/// another size is refused rather than densified with intrinsics that are not its own (KITTI's
+/// odometry calib.txt carries no size to check against).
 std::map<std::string, CalibrationImage> sharedCalibrationImages(const std::vector<sequence::Frame>& frames);
 
 /// Densifies frames one after another with one configuration (the option table's, read once),

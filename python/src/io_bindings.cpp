@@ -10,6 +10,7 @@
 #include "errors.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/io/kitti_bin.hpp"
 
 namespace lidar_sgm {
 namespace python {
@@ -18,11 +19,13 @@ namespace py = pybind11;
 
 namespace {
 
-py::array_t<float> cloudArray(const pcl::PointCloud<pcl::PointXYZI>& cloud) {
+/// x, y, z, intensity per point: a pcl::PointXYZI cloud, or KITTI points read without PCL.
+template <typename Points>
+py::array_t<float> cloudArray(const Points& cloud) {
   py::array_t<float> out({static_cast<py::ssize_t>(cloud.size()), py::ssize_t{4}});
   float* o = out.mutable_data();
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const pcl::PointXYZI& p = cloud[i];
+    const auto& p = cloud[i];
     o[4 * i] = p.x;
     o[4 * i + 1] = p.y;
     o[4 * i + 2] = p.z;
@@ -49,7 +52,7 @@ py::array imageArray(const cv::Mat& bgr) {
 
 void bindIo(py::module_& m) {
   m.def(
-      "read_kitti_bin", [](const std::string& path) { return cloudArray(readingFile([&] { return io::readKittiBin(path); })); },
+      "read_kitti_bin", [](const std::string& path) { return cloudArray(readingFile([&] { return io::readKittiScan(path); })); },
       py::arg("path"),
       "read_kitti_bin(path) -> (N, 4) float32 array: x, y, z [m], reflectance (KITTI velodyne .bin).\n"
       "OSError for a missing file or one whose size is not a multiple of 16 bytes.");

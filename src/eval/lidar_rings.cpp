@@ -35,6 +35,13 @@ std::vector<Eigen::Vector3f> toPoints(const pcl::PointCloud<pcl::PointXYZI>& sca
   return points;
 }
 
+std::vector<Eigen::Vector3f> toPoints(const std::vector<io::KittiPoint>& scan) {
+  std::vector<Eigen::Vector3f> points;
+  points.reserve(scan.size());
+  for (const io::KittiPoint& p : scan) points.emplace_back(p.x, p.y, p.z);
+  return points;
+}
+
 std::vector<int> recoverRings(const std::vector<Eigen::Vector3f>& points, const RingRecoveryOptions& options) {
   if (!(options.wrapJumpDeg > 0.0 && options.wrapJumpDeg < 360.0)) {
     throw std::invalid_argument("RingRecoveryOptions: wrapJumpDeg must be in (0, 360)");

@@ -21,6 +21,8 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "lidar_sgm/io/kitti_bin.hpp"
+
 namespace lidar_sgm {
 namespace eval {
 
@@ -40,6 +42,8 @@ std::vector<int> recoverRings(const pcl::PointCloud<pcl::PointXYZI>& scan, const
 
 /// The xyz of a cloud, in order (what recoverRings and geometry::project take).
 std::vector<Eigen::Vector3f> toPoints(const pcl::PointCloud<pcl::PointXYZI>& scan);
+/// The same for a scan read without PCL (io::readKittiScan).
+std::vector<Eigen::Vector3f> toPoints(const std::vector<io::KittiPoint>& scan);
 
 /// Elevation atan2(z, sqrt(x^2 + y^2)) per ring, to check a recovery.
 struct RingStatistics {

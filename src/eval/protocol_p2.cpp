@@ -9,8 +9,8 @@
 #include "lidar_sgm/eval/protocols.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/io/calibration_io.hpp"
-#include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
+#include "lidar_sgm/io/kitti_bin.hpp"
 
 namespace lidar_sgm {
 namespace eval {
@@ -101,7 +101,7 @@ EvalFrame loadRingFrame(const fs::path& root, const std::string& id) {
       io::readCalibration((root / "calib" / (id + ".txt")).string(), frame.left.cols, frame.left.rows);
   frame.focalBaseline = calibration.focalBaseline();
 
-  const std::vector<Eigen::Vector3f> points = toPoints(io::readKittiBin((root / "velodyne" / (id + ".bin")).string()));
+  const std::vector<Eigen::Vector3f> points = toPoints(io::readKittiScan((root / "velodyne" / (id + ".bin")).string()));
   const std::vector<int> rings = recoverRings(points);
   const RingSplit split = splitByRing(points, rings);
 

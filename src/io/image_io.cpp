@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "image_header.hpp"
 #include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 #include <unistd.h>
@@ -26,30 +27,13 @@ namespace io {
 namespace fs = std::filesystem;
 namespace {
 
-[[noreturn]] void failTooLarge(const std::string& path, std::uint64_t width, std::uint64_t height) {
-  throw std::runtime_error("cannot read image '" + path + "': " + std::to_string(width) + "x" + std::to_string(height) +
-                           " pixels is more than the limit of " + std::to_string(kMaxImageSide) + "x" +
-                           std::to_string(kMaxImageSide));
-}
-
-std::uint32_t bigEndian32(const unsigned char* bytes) {
-  return (static_cast<std::uint32_t>(bytes[0]) << 24) | (static_cast<std::uint32_t>(bytes[1]) << 16) |
-         (static_cast<std::uint32_t>(bytes[2]) << 8) | static_cast<std::uint32_t>(bytes[3]);
-}
-
 // A PNG's size is in its first chunk (IHDR): checked before decoding, since OpenCV allocates
 // the whole image first (a 1 MB PNG of 30000x30000 asked for 8.6 GB).
 void requirePngSizeWithinLimit(const std::string& path) {
-  unsigned char header[24] = {};
-  std::ifstream in(path, std::ios::binary);
-  in.read(reinterpret_cast<char*>(header), sizeof header);
-  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (in.gcount() != sizeof header || std::memcmp(header, kSignature, 8) != 0) return;  // not a PNG
-  if (std::memcmp(header + 12, "IHDR", 4) != 0) return;  // a broken PNG: OpenCV refuses it
-  const std::uint32_t width = bigEndian32(header + 16);
-  const std::uint32_t height = bigEndian32(header + 20);
+  const detail::PngHeader png = detail::readPngHeader(path);
+  if (!png.ihdr) return;  // not a PNG, or a broken one: OpenCV refuses it
   const auto limit = static_cast<std::uint32_t>(kMaxImageSide);
-  if (width > limit || height > limit) failTooLarge(path, width, height);
+  if (png.width > limit || png.height > limit) detail::failImageTooLarge(path, png.width, png.height);
 }
 
 // OpenCV picks a decoder by the file's bytes, not its name, among every codec it was built with:
@@ -87,7 +71,7 @@ cv::Mat readAny(const std::string& path) {
   if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': not a readable image file");
   // Other formats are checked once decoded (OpenCV bounds them by CV_IO_MAX_IMAGE_PIXELS first).
   if (image.cols > kMaxImageSide || image.rows > kMaxImageSide) {
-    failTooLarge(path, static_cast<std::uint64_t>(image.cols), static_cast<std::uint64_t>(image.rows));
+    detail::failImageTooLarge(path, static_cast<std::uint64_t>(image.cols), static_cast<std::uint64_t>(image.rows));
   }
   return image;
 }

@@ -11,22 +11,20 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "lidar_sgm/io/cloud_limits.hpp"
+#include "lidar_sgm/io/kitti_bin.hpp"
+
 namespace lidar_sgm {
 namespace io {
 
-/// The most points a scan file may declare (KITTI's scans hold about 120 k; a 128-beam sensor
-/// about 260 k per turn): a header asking for more is refused, naming this limit, before
-/// anything is allocated. The file readers take another limit (`maxPoints`; the tools'
-/// -max_points) for the rare file that legitimately holds more.
-constexpr std::uint64_t kMaxCloudPoints = 50'000'000;
-
-/// KITTI velodyne scan: float32 little-endian x, y, z, reflectance per point. Throws
-/// std::runtime_error naming the file when it is missing, or when its size is not a multiple of
-/// 16 bytes (a truncated file is never read in part), or holds more than `maxPoints` points
-/// (checked from its size, before reading). An empty file gives an empty cloud.
+/// KITTI velodyne scan: float32 little-endian x, y, z, reflectance per point: readKittiScan()'s
+/// points (kitti_bin.hpp, no PCL) as an unorganized cloud, dense when every x, y, z is finite.
+/// Throws std::runtime_error naming the file when it is missing, or when its size is not a
+/// multiple of 16 bytes (a truncated file is never read in part), or holds more than `maxPoints`
+/// points (checked from its size, before reading). An empty file gives an empty cloud.
 pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
-/// The same from the file's bytes already in memory (`size` bytes at `data`); `source` names them
-/// in messages.
+/// The same from the file's bytes already in memory (`size` bytes at `data`:
+/// readKittiScanFromBuffer's points); `source` names them in messages.
 pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::size_t size,
                                                        const std::string& source = "<buffer>");
 

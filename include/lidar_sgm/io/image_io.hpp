@@ -23,6 +23,13 @@ constexpr int kMaxImageSide = 16384;
 /// kMaxImageSide on a side (a PNG's size is checked from its header, before decoding), or of
 /// another depth / channel count.
 cv::Mat readImage(const std::string& path);
+/// The size of the image at `path` (width x height), decoding nothing where the format allows:
+/// a PNG's comes from its header (IHDR, bytes 16-23), so a PNG whose pixel data is damaged still
+/// gives one (readImage() refuses it); JPEG and PGM/PPM are decoded as readImage() decodes them
+/// (OpenCV 4.6 reads no size otherwise). Throws std::runtime_error "cannot read image '<path>':
+/// <problem>" for what readImage() refuses before decoding (a missing file, another format, a
+/// side above kMaxImageSide), a PNG cut short before its size, or one with no IHDR chunk first.
+cv::Size imageSize(const std::string& path);
 /// An 8- or 16-bit gray, BGR or BGRA image as gray of the same depth (BGR2GRAY, OpenCV's BT.601
 /// weights; gray is returned as is, not copied). Throws std::invalid_argument for other depths or
 /// channels.
