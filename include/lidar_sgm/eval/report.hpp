@@ -37,10 +37,10 @@ struct MethodResult {
   ConfidenceCurves confidence{};
   /// Frames with an object map (the KITTI142 protocol): the paper's Table II figures; for the
   /// medians, the means over the frames (KITTI's evaluation averages its error rates per image).
-  std::optional<ObjectSplitMetrics> objectSplit;
+  std::optional<ObjectSplitMetrics> objectSplit{};
   /// Frames that score their input pixels too (KITTI142): the metrics on the GT pixels that no
   /// input point covers, where the GT cannot favour a method for having been given the answer.
-  std::optional<DisparityMetrics> uncovered;
+  std::optional<DisparityMetrics> uncovered{};
 };
 
 /// Same method and the same role (sweep best or not): what the medians are grouped by.
