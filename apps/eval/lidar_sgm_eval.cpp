@@ -32,17 +32,20 @@ using namespace lidar_sgm::eval;
 namespace {
 
 void printHelp(const char* program) {
-  char usage[600];
+  char usage[700];
   std::snprintf(usage, sizeof(usage),
                 "Syntax is: %s -out DIR [options]\n"
                 "Runs the evaluation protocols of docs/EVALUATION.md (P1: KITTI 2015 with simulated LiDAR, P2: real\n"
-                "KITTI LiDAR, P3: synthetic frames) and writes tables, plots, pictures and JSON. The whole plan\n"
+                "KITTI LiDAR, KITTI142: the paper's own, P3: synthetic frames) and writes tables, plots, pictures\n"
+                "and JSON. The whole plan\n"
                 "takes minutes (BENCHMARK.md); it is printed before anything runs.\n",
                 program);
   const std::string inputs =
       "  -data ROOT         third-party data root (default: $LIDAR_SGM_DATA, else ../shared/data, relative to\n"
       "                     the working directory)\n"
-      "  -protocols LIST    comma-separated subset of P1,P2,P3 (default: P1,P2,P3)\n"
+      "  -protocols LIST    comma-separated subset of P1,P2,KITTI142,P3 (default: all four; KITTI142 is the\n"
+      "                     paper's own: KITTI 2015 frames with their raw scans, its Tables I and II)\n"
+      "  -kitti142_frames N the first N frames of KITTI142 only, 0 = all (default: 0)\n"
       "  -synth_frames N    synthetic frames per P3 set (default: 10, seeds 100..)\n"
       "  -synth_size WxH    synthetic frame size (default: 1242x375)\n"
       "  -p3_sets LIST      comma-separated subset of clear64,rain64,clear128 (default: all three;\n"
@@ -109,7 +112,9 @@ std::string joinedText(const std::vector<std::string>& items, const char* separa
 GroupSelection selectionFrom(const apps::Arguments& args, const std::string& root) {
   GroupSelection selection;
   selection.dataRoot = root;
-  selection.protocols = listOption(args, "protocols", "P1,P2,P3");
+  selection.protocols = listOption(args, "protocols", "P1,P2,KITTI142,P3");
+  selection.kitti142Frames = args.integer("kitti142_frames", 0);
+  if (selection.kitti142Frames < 0) throw std::invalid_argument("option -kitti142_frames: must be >= 0 (0 = all)");
   selection.p3Sets = listOption(args, "p3_sets", "clear64,rain64,clear128");
   selection.synthFrames = args.integer("synth_frames", 10);
   const std::string size = args.text("synth_size", "1242x375");
@@ -141,6 +146,11 @@ void printPlan(const GroupSelection& selection, const std::string& out, const Gr
   const char* root = selection.dataRoot.c_str();
   if (has(selection.protocols, "P1")) std::printf("    P1: every GT frame under %s, simulated 64-beam LiDAR\n", root);
   if (has(selection.protocols, "P2")) std::printf("    P2: the real KITTI scans under %s, every 4th ring held out\n", root);
+  if (has(selection.protocols, "KITTI142")) {
+    std::printf("    KITTI142: %s/kitti2015_lidar, KITTI 2015 frames with their raw scans (%s), the paper's tables\n",
+                root, selection.kitti142Frames > 0 ? ("the first " + std::to_string(selection.kitti142Frames)).c_str()
+                                                   : "every frame");
+  }
   if (has(selection.protocols, "P3")) {
     std::printf("    P3: synthetic sets %s, %d frames each (seeds 100..), %dx%d\n",
                 joinedText(selection.p3Sets, ", ").c_str(), selection.synthFrames, selection.synthWidth,
@@ -161,7 +171,7 @@ int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
       apps::joined(apps::configValueOptions(OptionScope::Disparity),
-                   {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step"}),
+                   {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step", "kitti142_frames"}),
       apps::joined(apps::configFlagOptions(OptionScope::Disparity), {"no_pictures", "fit_confidence"}));
   if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
   if (!args.positionals().empty()) {
@@ -236,8 +246,11 @@ int run(int argc, char** argv) {
     std::printf("%s: %zu frames\n", g.name.c_str(), g.frames.size());
     results.push_back(runGroup(g, runOptions));
     writeAlphaSweepPlot(results.back(), out + "/plots/alpha_sweep_" + slug(g.name) + ".png");
+    // The paper's tables first where the group has them (KITTI142), on the terminal too.
+    const std::string paperTables = paperTablesMarkdown(results.back());
+    if (!paperTables.empty()) std::printf("%s\n", paperTables.c_str());
     markdown += "\n## " + g.name + "\n\n" + g.description + ". Plot: `plots/alpha_sweep_" + slug(g.name) +
-                ".png`.\n\n" + markdownTable(results.back());
+                ".png`.\n" + paperTables + "\n" + markdownTable(results.back());
     if (writeConfidencePlot(results.back(), out + "/plots/confidence_" + slug(g.name) + ".png")) {
       markdown += "\n### Confidence\n\nPlot: `plots/confidence_" + slug(g.name) + ".png`.\n\n" +
                   confidenceMarkdown(results.back());

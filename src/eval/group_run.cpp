@@ -31,7 +31,10 @@ struct FrameRun {
 /// confidence dropped any pixel (MethodOutput::allDisparity): without a new run.
 MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput& out, bool curves) {
   const Image<std::int16_t>& d = out.disparity;
-  MethodResult result{method, evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view()), out.milliseconds};
+  MethodResult result;
+  result.method = method;
+  result.metrics = evaluateDisparity(d.view(), f.groundTruth.view(), f.exclude.view());
+  result.milliseconds = out.milliseconds;
   result.minDisparity = out.range.minDisparity;
   result.numDisparities = out.range.numDisparities;
   result.rangeFromLidar = out.range.fromLidar;
@@ -39,6 +42,8 @@ MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput&
   scoring.denseGroundTruth = f.denseGroundTruth;  // P3: a point on the sky is wrong
   result.cloud = evaluateCloud(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
   result.depth = evaluateDepth(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
+  if (!f.objectMap.empty()) result.objectSplit = evaluateObjectSplit(d.view(), f.groundTruth.view(), f.objectMap.view());
+  if (!f.inputPixels.empty()) result.uncovered = evaluateDisparity(d.view(), f.groundTruth.view(), f.inputPixels.view());
   if (curves && !out.confidence.empty()) {
     result.confidence = confidenceCurves(out.allDisparity.view(), out.confidence.view(), f.groundTruth.view(),
                                          f.exclude.view(), f.focalBaseline, scoring);

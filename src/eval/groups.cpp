@@ -25,7 +25,7 @@ void checkNames(const std::vector<std::string>& given, const std::vector<std::st
 }  // namespace
 
 std::vector<FrameGroup> loadGroups(const GroupSelection& selection) {
-  checkNames(selection.protocols, {"P1", "P2", "P3"}, "protocol");
+  checkNames(selection.protocols, {"P1", "P2", "P3", "KITTI142"}, "protocol");
   checkNames(selection.p3Sets, {"clear64", "rain64", "clear128"}, "P3 set");
   std::vector<FrameGroup> groups;
   if (contains(selection.protocols, "P1")) {
@@ -46,6 +46,16 @@ std::vector<FrameGroup> loadGroups(const GroupSelection& selection) {
     g.description = "real KITTI HDL-64 scans: every 4th laser ring held out as GT, the others fed; scored on the held-out rings";
     g.methods = baseMethods();
     g.frames = loadP2(selection.dataRoot);
+    if (!g.frames.empty()) groups.push_back(std::move(g));
+  }
+  if (contains(selection.protocols, "KITTI142")) {
+    FrameGroup g;
+    g.name = "KITTI142";
+    g.description = "the paper's own protocol: KITTI stereo 2015 training frames with the raw Velodyne scan of the same "
+                    "instant, scored on every pixel of disp_occ_0 (the input's pixels included, as the paper), split "
+                    "by the object map for Table II";
+    g.methods = baseMethods();
+    g.frames = loadKitti142(selection.dataRoot, selection.kitti142Frames);
     if (!g.frames.empty()) groups.push_back(std::move(g));
   }
   if (contains(selection.protocols, "P3")) {

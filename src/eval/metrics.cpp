@@ -50,5 +50,36 @@ DisparityMetrics evaluateDisparity(ImageView<const std::int16_t> estimate,
   return m;
 }
 
+ObjectSplitMetrics evaluateObjectSplit(ImageView<const std::int16_t> estimate, ImageView<const float> groundTruth,
+                                       ImageView<const std::uint8_t> objectMap) {
+  if (estimate.width != groundTruth.width || estimate.height != groundTruth.height ||
+      objectMap.width != estimate.width || objectMap.height != estimate.height) {
+    throw std::invalid_argument("evaluateObjectSplit: estimate, ground truth and object map differ in size");
+  }
+  long estimated[2] = {0, 0};  // [background, foreground]
+  long wrong[2] = {0, 0};
+  ObjectSplitMetrics m;
+  for (int y = 0; y < groundTruth.height; ++y) {
+    for (int x = 0; x < groundTruth.width; ++x) {
+      const float gt = groundTruth(x, y);
+      if (!(gt > 0.0f)) continue;
+      const int object = objectMap(x, y) > 0 ? 1 : 0;
+      ++m.gtPixels;
+      m.foregroundPixels += object;
+      const std::int16_t e = estimate(x, y);
+      if (e == kInvalidDisparity) continue;
+      ++estimated[object];
+      const double error = std::abs(static_cast<double>(e) / kDisparityScale - gt);
+      if (error > 3.0 && error > 0.05 * gt) ++wrong[object];
+    }
+  }
+  const auto share = [](long part, long whole) { return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0; };
+  m.background = share(wrong[0], estimated[0]);
+  m.foreground = share(wrong[1], estimated[1]);
+  m.total = share(wrong[0] + wrong[1], estimated[0] + estimated[1]);
+  m.density = share(estimated[0] + estimated[1], m.gtPixels);
+  return m;
+}
+
 }  // namespace eval
 }  // namespace lidar_sgm

@@ -86,6 +86,12 @@ nlohmann::json methodJson(const MethodResult& method) {
   entry["best_alpha"] = method.bestAlpha;
   entry["name"] = label(method);
   entry["ms"] = method.milliseconds;
+  if (method.objectSplit) {
+    const ObjectSplitMetrics& o = *method.objectSplit;
+    entry["object_split"] = {{"background", o.background}, {"foreground", o.foreground}, {"total", o.total},
+                             {"density", o.density},       {"gt_pixels", o.gtPixels}, {"foreground_pixels", o.foregroundPixels}};
+  }
+  if (method.uncovered) entry["uncovered"] = metricsJson(*method.uncovered);
   if (method.numDisparities > 0) {
     entry["disparity_range"] = {
         {"min", method.minDisparity}, {"num", method.numDisparities}, {"from_lidar", method.rangeFromLidar}};
@@ -165,6 +171,8 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
   std::vector<std::vector<CloudMetrics>> clouds;
   std::vector<std::vector<DepthMetrics>> depths;
   std::vector<std::vector<double>> milliseconds;
+  std::vector<std::vector<ObjectSplitMetrics>> splits;
+  std::vector<std::vector<DisparityMetrics>> uncovered;
   for (const FrameResult& frame : result.frames) {
     for (const MethodResult& method : frame.methods) {
       // The best alpha may differ between groups but is one per group: matched by role alone.
@@ -178,7 +186,11 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
         clouds.emplace_back();
         depths.emplace_back();
         milliseconds.emplace_back();
+        splits.emplace_back();
+        uncovered.emplace_back();
       }
+      if (method.objectSplit) splits[index].push_back(*method.objectSplit);
+      if (method.uncovered) uncovered[index].push_back(*method.uncovered);
       metrics[index].push_back(method.metrics);
       clouds[index].push_back(method.cloud);
       depths[index].push_back(method.depth);
@@ -191,6 +203,10 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
     entries[i].depth = medianDepth(depths[i]);
     entries[i].milliseconds = medianOf(milliseconds[i]);
     entries[i].numDisparities = 0;  // a range per frame, not a median
+    entries[i].objectSplit.reset();
+    entries[i].uncovered.reset();
+    if (!splits[i].empty()) entries[i].objectSplit = meanObjectSplit(splits[i]);
+    if (!uncovered[i].empty()) entries[i].uncovered = medianOver(uncovered[i]);
   }
   return entries;
 }

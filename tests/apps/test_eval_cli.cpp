@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -111,6 +112,54 @@ TEST_F(EvalCli, SmallSyntheticRunWritesEverythingAndItsFiguresAreTheDensifiers) 
   EXPECT_NE(text.str().find("3 cameras + LiDAR (alpha 0.7)"), std::string::npos);
   EXPECT_NE(text.str().find("OpenCV StereoSGBM"), std::string::npos);
   EXPECT_NE(text.str().find("IP-Basic"), std::string::npos);
+}
+
+TEST_F(EvalCli, Kitti142PrintsThePapersTablesAndItsFiguresAreTheDensifiers) {
+  const std::string root = std::string(test::kSharedDataDir) + "/kitti2015_lidar";
+  if (!fs::is_directory(root)) GTEST_SKIP() << "no " << root;
+  const RunResult r = runTool("-data " + std::string(test::kSharedDataDir) +
+                              " -protocols KITTI142 -kitti142_frames 2 -alpha_step 0.5 -no_pictures -out " + dir_.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // Both tables on the terminal, ours beside the paper's rows.
+  for (const char* text : {"The paper's Table I", "The paper's Table II", "| paper: LiDAR-SGM (alpha 0.7) | 2.06 | 14.47",
+                           "| LiDAR-SGM (alpha 0.7) |", "| IP-Basic (morphological) |", "where no input point is"}) {
+    EXPECT_NE(r.output.find(text), std::string::npos) << text << " in\n" << r.output;
+  }
+  std::ifstream jsonFile(dir_ / "results.json");
+  const nlohmann::json json = nlohmann::json::parse(jsonFile);
+  ASSERT_EQ(json.at("protocols").size(), 1u);
+  const nlohmann::json& frames = json.at("protocols").at(0).at("frames");
+  ASSERT_EQ(frames.size(), 2u);
+
+  // The first frame, loaded and matched here as the tools run it, scored directly.
+  const std::vector<eval::EvalFrame> loaded = eval::loadKitti142(test::kSharedDataDir, 1);
+  ASSERT_EQ(loaded.size(), 1u);
+  const eval::EvalFrame& f = loaded[0];
+  EXPECT_TRUE(f.exclude.empty());  // every GT pixel scored, as the paper
+  ASSERT_FALSE(f.objectMap.empty());
+  Densifier densifier;
+  densifier.setComputeCloud(false);
+  densifier.setStereoPair(io::grayView(f.left), io::grayView(f.right));
+  densifier.runProjected(&f.lidar);
+  const eval::DisparityMetrics all = eval::evaluateDisparity(densifier.disparity().view(), f.groundTruth.view());
+  const eval::DisparityMetrics uncovered =
+      eval::evaluateDisparity(densifier.disparity().view(), f.groundTruth.view(), f.inputPixels.view());
+  const eval::ObjectSplitMetrics split =
+      eval::evaluateObjectSplit(densifier.disparity().view(), f.groundTruth.view(), f.objectMap.view());
+  EXPECT_GT(split.foregroundPixels, 0);
+  const nlohmann::json& frame = frames.at(0);
+  EXPECT_EQ(frame.at("frame"), f.name);
+  bool found = false;
+  for (const auto& m : frame.at("methods")) {
+    if (m.at("method") != "fused_sgm" || m.at("best_alpha").get<bool>() || m.at("alpha").get<double>() != 0.7) continue;
+    found = true;
+    EXPECT_DOUBLE_EQ(m.at("correct").get<double>(), all.correct);
+    EXPECT_DOUBLE_EQ(m.at("uncovered").at("correct").get<double>(), uncovered.correct);
+    EXPECT_DOUBLE_EQ(m.at("object_split").at("foreground").get<double>(), split.foreground);
+    EXPECT_DOUBLE_EQ(m.at("object_split").at("total").get<double>(), split.total);
+    EXPECT_DOUBLE_EQ(m.at("object_split").at("density").get<double>(), split.density);
+  }
+  EXPECT_TRUE(found) << frame.dump(2);
 }
 
 TEST_F(EvalCli, HalfScaleRunReportsTheDensifiersFiguresAndItsSettings) {

@@ -39,6 +39,29 @@ TEST(Metrics, RejectsMismatchedSizes) {
                std::invalid_argument);
 }
 
+// The same five GT pixels split by an object map (the paper's Table II): pixels 2 and 4 (gt 40
+// and 20, both wrong) are foreground; the last two pixels have no GT. Background: 10 (right) and
+// 100 (right) estimated, 30 missing; foreground: 40 and 20 estimated, both wrong.
+TEST(Metrics, ObjectSplitCountsWrongPixelsAmongTheEstimatedOnesPerSide) {
+  const int w = 7;
+  const float gtValues[w] = {10.0f, 40.0f, 100.0f, 20.0f, 30.0f, 0.0f, 0.0f};
+  const std::int16_t estValues[w] = {168, 43 * 16 + 8, 104 * 16, 30 * 16, kInvalidDisparity, 5 * 16, 0};
+  const std::uint8_t objectValues[w] = {0, 3, 0, 1, 0, 2, 0};
+  const eval::ObjectSplitMetrics m = eval::evaluateObjectSplit(ImageView<const std::int16_t>(estValues, w, 1),
+                                                               ImageView<const float>(gtValues, w, 1),
+                                                               ImageView<const std::uint8_t>(objectValues, w, 1));
+  EXPECT_EQ(m.gtPixels, 5);
+  EXPECT_EQ(m.foregroundPixels, 2);
+  EXPECT_DOUBLE_EQ(m.background, 0.0);
+  EXPECT_DOUBLE_EQ(m.foreground, 1.0);
+  EXPECT_DOUBLE_EQ(m.total, 2.0 / 4.0);
+  EXPECT_DOUBLE_EQ(m.density, 4.0 / 5.0);
+  const std::uint8_t small[2] = {0, 0};
+  EXPECT_THROW(eval::evaluateObjectSplit(ImageView<const std::int16_t>(estValues, w, 1),
+                                         ImageView<const float>(gtValues, w, 1), ImageView<const std::uint8_t>(small, 2, 1)),
+               std::invalid_argument);
+}
+
 // KITTI geometry (f 721.5, c_y 172.9): the +2 deg beam hits row 172.9 - 721.5*tan(2 deg) = 147.7 -> 148;
 // the beams below leave the 375-row image around -16.5 deg, so about 2/3 of the 64 beams land.
 TEST(SimulatedLidar, BeamRowsFollowTheHdl64Geometry) {

@@ -13,7 +13,7 @@ namespace lidar_sgm {
 namespace eval {
 
 struct EvalFrame {
-  std::string protocol;  ///< "P1", "P2", "P3"
+  std::string protocol;  ///< "P1", "P2", "P3", "KITTI142"
   std::string dataset;   ///< e.g. "kitti2015", "kitti_lidar", "synth_clear_64"
   std::string name;      ///< frame id, unique within the dataset
   cv::Mat left;          ///< rectified left, gray, 8 or 16 bit (what the matchers see)
@@ -28,6 +28,12 @@ struct EvalFrame {
   /// the cloud metrics then count a point there as wrong (CloudScoring::denseGroundTruth).
   bool denseGroundTruth = false;
   Image<std::uint8_t> exclude;      ///< 1 where a pixel is a LiDAR input pixel (not scored), same size
+  /// KITTI 2015's object map where the protocol has one: 0 background, k > 0 foreground object k
+  /// (the paper's Table II splits the error by it); empty otherwise.
+  Image<std::uint8_t> objectMap;
+  /// 1 where an input point projects, for protocols that score those pixels too (exclude empty):
+  /// "correct" is then also given on the GT pixels no input point covers. Empty otherwise.
+  Image<std::uint8_t> inputPixels;
   double focalBaseline = 0.0;       ///< f*b [px*m], for depth <-> disparity (IP-Basic works on depth)
   int numDisparities = 128;         ///< search range for this frame (multiple of 16)
 };

@@ -26,5 +26,22 @@ DisparityMetrics evaluateDisparity(ImageView<const std::int16_t> estimate,
                                    ImageView<const float> groundTruth,
                                    ImageView<const std::uint8_t> exclude = {});
 
+/// The paper's Table II on KITTI 2015's object split: the share of wrong pixels (error > 3 px and
+/// > 5 % of the GT, KITTI's D1) among the pixels that have an estimate, on the background
+/// (objectMap 0), the foreground (objectMap > 0) and all GT pixels, and the density (share of GT
+/// pixels with an estimate). Every GT pixel is scored (the paper excludes none).
+struct ObjectSplitMetrics {
+  double background = 0;
+  double foreground = 0;
+  double total = 0;
+  double density = 0;
+  long foregroundPixels = 0;  ///< GT pixels on objects
+  long gtPixels = 0;
+};
+
+/// `objectMap` has the estimate's size; std::invalid_argument otherwise.
+ObjectSplitMetrics evaluateObjectSplit(ImageView<const std::int16_t> estimate, ImageView<const float> groundTruth,
+                                       ImageView<const std::uint8_t> objectMap);
+
 }  // namespace eval
 }  // namespace lidar_sgm

@@ -60,6 +60,15 @@ double maxGroundTruth(const Image<float>& groundTruth);
 std::vector<EvalFrame> loadP1(const std::string& dataRoot);
 
 // ---------------------------------------------------------------------------------------------
+// KITTI142: the paper's own protocol (Sec. IV-A-a, Tables I and II) on kitti2015_lidar: KITTI
+// stereo 2015 training frames with the raw scan of the same instant (29 of the paper's 142 in
+// ../shared/data). The input is the whole scan projected as the tools project it; every pixel of
+// disp_occ_0 is scored (exclude empty, as the paper), inputPixels marks the input's pixels for the
+// "no input point" figure, objectMap is obj_map (Table II's background / foreground split).
+// `maxFrames` > 0 keeps the first frames (by id) only. No frame when the folder is absent.
+std::vector<EvalFrame> loadKitti142(const std::string& dataRoot, int maxFrames = 0);
+
+// ---------------------------------------------------------------------------------------------
 // P2: real LiDAR, ring hold-out.
 // - kitti_stereo_lidar_calib_nogt (dataset "kitti_lidar", 2 frames): each point's laser ring is
 //   recovered (lidar_rings.hpp); rings with ring % 4 == 3 are held out as GT, the others are the

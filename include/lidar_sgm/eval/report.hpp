@@ -2,6 +2,7 @@
 /// @file report.hpp  Evaluation results: data model, median summaries, Markdown tables, JSON,
 /// and an atomic text writer.
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,12 @@ struct MethodResult {
   /// The method's confidence judged (confidence_curves.hpp); empty where it has none, and for
   /// the sweep's best alpha (the fused method is judged at the paper's alpha).
   ConfidenceCurves confidence{};
+  /// Frames with an object map (the KITTI142 protocol): the paper's Table II figures; for the
+  /// medians, the means over the frames (KITTI's evaluation averages its error rates per image).
+  std::optional<ObjectSplitMetrics> objectSplit{};
+  /// Frames that score their input pixels too (KITTI142): the metrics on the GT pixels that no
+  /// input point covers, where the GT cannot favour a method for having been given the answer.
+  std::optional<DisparityMetrics> uncovered{};
 };
 
 /// Same method and the same role (sweep best or not): what the medians are grouped by.
@@ -88,6 +95,16 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result);
 /// with estimate %), rows and medians as in the first.
 std::string markdownTable(const ProtocolResult& result);
 
+/// Per-field means of the object split over frames (counts summed).
+ObjectSplitMetrics meanObjectSplit(const std::vector<ObjectSplitMetrics>& frames);
+
+/// The paper's tables for a protocol whose frames have an object map (KITTI142), from the
+/// medians of `result` beside the paper's own figures: Table I (median correct and RMSE, and
+/// correct on the GT pixels no input point covers) and Table II (error among the estimated pixels,
+/// background / foreground / total, and density; means over the frames). Empty when no method
+/// has the object split.
+std::string paperTablesMarkdown(const ProtocolResult& result);
+
 /// Every figure, machine-readable. Methods are named by their stable id (methodId), with
 /// "alpha" where the method has one, "best_alpha" for the sweep's best, and "name" (the display
 /// name, for people only). Shares (correct, d1, d1_est, density) are fractions in [0, 1] as in
@@ -96,7 +113,8 @@ std::string markdownTable(const ProtocolResult& result);
 /// ["alpha",] "best_alpha","name","correct","rmse","d1","d1_est","density","gt_pixels",
 /// "estimated_pixels","ms",["disparity_range":{"min","num","from_lidar"},]"cloud":{"points","gt_pixels","tau_3":{"precision","completeness",
 /// "f_score"},"tau_5":{...}},"depth":{"rmse_mm","mae_mm","irmse_per_km","imae_per_km","density",
-/// "gt_pixels","estimated_pixels"}}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
+/// "gt_pixels","estimated_pixels"}[,"object_split":{"background","foreground","total","density",
+/// "gt_pixels","foreground_pixels"}][,"uncovered":{the disparity metrics}]}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
 /// "correct","rmse",...}]}}]} (the sweeps hold the disparity metrics only).
 nlohmann::json toJson(const std::vector<ProtocolResult>& results);
 
