@@ -161,7 +161,7 @@ TEST(EvalToolOptions, WithoutArgumentsPrintsThePlanAndRunsNothing) {
   if (!*test::kEvalTool) GTEST_SKIP() << "lidar_sgm_eval is not built";
   const RunResult r = run(test::kEvalTool, "");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  for (const char* part : {"protocols: P1, P2, P3", "methods:", "outputs:", "-out DIR is required",
+  for (const char* part : {"protocols: P1, P2, KITTI142, P3", "methods:", "outputs:", "-out DIR is required",
                            "disparity range from each frame's LiDAR (without LiDAR: the frame's)"}) {
     EXPECT_NE(r.output.find(part), std::string::npos) << part << " in:\n" << r.output;
   }
