@@ -193,6 +193,18 @@ void Densifier::match(const LidarPoints* lidar) {
                                                             usedParams_.numDisparities);
     if (pairOrientation_.looksSwapped()) throw std::invalid_argument(swappedPairMessage(pairOrientation_));
   }
+  // The points the pair contradicts are left out of the matching (lidar_consistency.hpp); the
+  // projected scan keeps them.
+  LidarPoints consistent;
+  std::size_t inconsistent = 0;
+  if (useLidar && !left.empty() && config_.lidarConsistency.enabled) {
+    std::vector<LidarSample> samples = samplesOf(*lidar);
+    inconsistent = dropInconsistentLidar(left, right, samples, config_.lidarConsistency);
+    if (inconsistent > 0) {
+      consistent = LidarPoints(lidar->width(), lidar->height(), samples);
+      lidar = &consistent;
+    }
+  }
   matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
   lastMode_ = matcher_->lastMode();
   if (config_.cropToScan && lastMode_ == MatchMode::LidarOnly) {
@@ -201,6 +213,7 @@ void Densifier::match(const LidarPoints* lidar) {
   }
   filterStats_ = useLidar ? applyOutputFilters(disparity_.view(), projected_.samples, left, config_.filters)
                           : OutputFilterStats{};
+  filterStats_.inconsistentLidar = inconsistent;
   keepConfidenceOfValidPixels();
   dropUnconfidentPixels();
   timings_.match = millisecondsSince(start);

@@ -31,6 +31,7 @@ std::string validationError(const DensifierConfig& c) {
     geometry::validate(c.projection);
     validate(c.filters.sky);
     validate(c.filters.outliers);
+    validate(c.lidarConsistency);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }

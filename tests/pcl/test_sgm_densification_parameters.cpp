@@ -38,7 +38,7 @@ constexpr std::size_t fieldCount() {
 
 // A new field of the configuration is compared below (and gets an entry in the option table,
 // config_options.cpp, when a front end sets it).
-static_assert(fieldCount<DensifierConfig>() == 11, "DensifierConfig changed: compare the new field here");
+static_assert(fieldCount<DensifierConfig>() == 12, "DensifierConfig changed: compare the new field here");
 static_assert(fieldCount<Parameters>() == 21, "Parameters changed: compare the new field here");
 static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: compare it here");
 static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: compare it here");
@@ -96,6 +96,11 @@ void expectEqual(const DensifierConfig& a, const DensifierConfig& b) {
   EXPECT_EQ(a.filters.sky.textureThreshold, b.filters.sky.textureThreshold);
   EXPECT_EQ(a.filters.outliers.enabled, b.filters.outliers.enabled);
   EXPECT_EQ(a.filters.outliers.minNeighbours, b.filters.outliers.minNeighbours);
+  EXPECT_EQ(a.lidarConsistency.enabled, b.lidarConsistency.enabled);
+  EXPECT_EQ(a.lidarConsistency.costRatio, b.lidarConsistency.costRatio);
+  EXPECT_EQ(a.lidarConsistency.marginPerPixel, b.lidarConsistency.marginPerPixel);
+  EXPECT_EQ(a.lidarConsistency.searchRadius, b.lidarConsistency.searchRadius);
+  EXPECT_EQ(a.lidarConsistency.minDisagreement, b.lidarConsistency.minDisagreement);
   EXPECT_EQ(a.pairCheck, b.pairCheck);
   EXPECT_EQ(a.computeCloud, b.computeCloud);
 }

@@ -11,6 +11,7 @@
 #include "lidar_sgm/geometry/disparity_range.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/lidar_consistency.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
 
@@ -49,6 +50,8 @@ struct DensifierConfig {
   double minConfidence = kDefaultMinConfidence;
   /// The sky and outlier filters between matching and reprojection (modes with LiDAR).
   OutputFilterOptions filters;
+  /// Fused modes: the LiDAR points the stereo pair contradicts are left out of the matching.
+  LidarConsistencyOptions lidarConsistency;
   /// Refuse a stereo pair that looks swapped (pair_orientation.hpp) instead of matching it.
   bool pairCheck = true;
   /// Also fill the depth image and the dense cloud; off, a run stops at the disparity.

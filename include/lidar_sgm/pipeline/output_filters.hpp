@@ -20,6 +20,7 @@ struct OutputFilterOptions {
 struct OutputFilterStats {
   std::size_t sky = 0;
   std::size_t outliers = 0;
+  std::size_t inconsistentLidar = 0;  ///< LiDAR points left out of the matching (lidar_consistency.hpp)
 };
 
 }  // namespace lidar_sgm
