@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "frame_folders.hpp"
+#include "kitti2015_layout.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 
 namespace fs = std::filesystem;
@@ -68,11 +69,22 @@ std::vector<Frame> framesOfLayout(const fs::path& dir) {
     case Layout::KittiObject:
       return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", "", CalibrationFormat::Auto,
                       MissingScans::Ignored, [&](const std::string& stem) { return (dir / "calib" / (stem + ".txt")).string(); });
+    case Layout::KittiStereo2015:
+      return detail::kittiStereo2015Frames(dir);
     case Layout::KittiOdometryRoot:
     case Layout::ListFile:
       break;
   }
   return odometrySequences(isDirectory(dir / "sequences") ? dir / "sequences" : dir);
+}
+
+/// A velodyne/ folder whose calibration is missing is no layout at all: say which files were
+/// looked for beside it, the likeliest fault.
+std::string calibrationHint(const fs::path& dir) {
+  if (!isDirectory(dir / "velodyne")) return "";
+  return ". It has velodyne/ but none of the calibrations looked for beside it: calib.txt (KITTI odometry), "
+         "calib/ with calib/NNNNNN.txt per scan (KITTI object), calib/calib_cam_to_cam.txt with "
+         "calib/calib_velo_to_cam.txt, or calib_cam_to_cam/ with calib_velo_to_cam/ (KITTI stereo 2015)";
 }
 
 }  // namespace
@@ -83,6 +95,7 @@ const char* layoutName(Layout layout) {
     case Layout::KittiOdometryRoot: return "KITTI odometry root";
     case Layout::KittiRawDrive: return "KITTI raw drive";
     case Layout::KittiObject: return "KITTI object layout";
+    case Layout::KittiStereo2015: return "KITTI stereo 2015 training";
     case Layout::ListFile: return "list file";
   }
   return "unknown layout";
@@ -92,6 +105,8 @@ Layout directoryLayout(const std::string& dir) {
   const fs::path path(dir);
   if (isOdometrySequence(path)) return Layout::KittiOdometrySequence;
   if (isRawDrive(path)) return Layout::KittiRawDrive;
+  // Before the object layout: KITTI 2015's shared calibration is in a calib/ folder too.
+  if (detail::isKittiStereo2015(path)) return Layout::KittiStereo2015;
   if (isObjectLayout(path)) return Layout::KittiObject;
   return Layout::KittiOdometryRoot;
 }
@@ -103,8 +118,10 @@ std::vector<Frame> framesFromDirectory(const std::string& dir) {
     throw std::invalid_argument(
         "-input_dir '" + dir +
         "' has no frames: expected a KITTI odometry sequence (velodyne/, calib.txt, image_2/, image_3/), a KITTI "
-        "odometry root (sequences/NN/), a KITTI raw drive (velodyne_points/data/, image_02/data/, image_03/data/) "
-        "or the KITTI object layout (velodyne/, calib/, image_2/, image_3/), with .bin, .pcd or .ply scans");
+        "odometry root (sequences/NN/), a KITTI raw drive (velodyne_points/data/, image_02/data/, image_03/data/), "
+        "the KITTI object layout (velodyne/, calib/, image_2/, image_3/) or KITTI stereo 2015 training (velodyne/, "
+        "image_2/, image_3/, calib/calib_cam_to_cam.txt or calib_cam_to_cam/), with .bin, .pcd or .ply scans" +
+        calibrationHint(fs::path(dir)));
   }
   return frames;
 }
