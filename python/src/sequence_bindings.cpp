@@ -104,12 +104,15 @@ void addToMap(VoxelMap& map, const py::handle& pointsArray, const py::object& co
 void bindSequence(py::module_& m) {
   py::class_<Frame>(m, "Frame",
                     "One frame of a sequence: its name (unique, the output's stem) and its files; left and\n"
-                    "right are '' when absent, oxts is a KITTI raw drive's OXTS packet ('' otherwise).")
+                    "right are '' when absent, oxts is a KITTI raw drive's OXTS packet ('' otherwise),\n"
+                    "velo_to_cam the calib_velo_to_cam file of KITTI stereo 2015's per-frame calibration\n"
+                    "('' otherwise).")
       .def_readonly("name", &Frame::name)
       .def_readonly("scan", &Frame::scan)
       .def_readonly("left", &Frame::left)
       .def_readonly("right", &Frame::right)
       .def_readonly("calib", &Frame::calib)
+      .def_readonly("velo_to_cam", &Frame::veloToCam)
       .def_readonly("oxts", &Frame::oxts)
       .def("__repr__", [](const Frame& f) { return "<lidar_sgm.Frame " + f.name + ": " + f.scan + ">"; });
 
@@ -122,9 +125,10 @@ void bindSequence(py::module_& m) {
       },
       py::arg("path"),
       "frames(path) -> list[Frame]: the frames of a KITTI odometry sequence (or the dataset's\n"
-      "sequences/ root), a KITTI raw drive, a KITTI object layout, or a list file (SCAN LEFT RIGHT\n"
-      "CALIB per line), in name order, as lidar_sgm_batch -input_dir / -list reads them. ValueError\n"
-      "naming the path and the layouts looked for otherwise.");
+      "sequences/ root), a KITTI raw drive, a KITTI object layout, KITTI stereo 2015 training with\n"
+      "its raw scans (velodyne/NNNNNN_10.bin), or a list file (SCAN LEFT RIGHT CALIB per line), in\n"
+      "name order, as lidar_sgm_batch -input_dir / -list reads them. ValueError naming the path and\n"
+      "the layouts looked for otherwise.");
   m.def(
       "read_frame_calibration",
       [](const Frame& frame, int width, int height) {
@@ -132,7 +136,8 @@ void bindSequence(py::module_& m) {
       },
       py::arg("frame"), py::arg("width") = 0, py::arg("height") = 0,
       "read_frame_calibration(frame, width=0, height=0) -> Calibration: the frame's calibration in its\n"
-      "layout's format (KITTI odometry calib.txt included). OSError naming the file when it cannot be read.");
+      "layout's format (KITTI odometry calib.txt and KITTI 2015's per-frame pair included). OSError\n"
+      "naming the file when it cannot be read.");
   m.def(
       "sequence_poses",
       [](const std::vector<Frame>& frames, const std::string& posesPath) {

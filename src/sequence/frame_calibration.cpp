@@ -9,6 +9,10 @@ geometry::StereoCalibration readFrameCalibration(const Frame& frame, int width, 
   if (frame.calibFormat == CalibrationFormat::KittiOdometry) {
     return io::readKittiOdometryCalibration(frame.calib, width, height);
   }
+  // KITTI raw's pair carries its image size (S_rect_02): width and height are not needed.
+  if (frame.calibFormat == CalibrationFormat::KittiRawPair) {
+    return io::readKittiRawCalibration(frame.calib, frame.veloToCam);
+  }
   return io::readCalibration(frame.calib, width, height);
 }
 

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "frame_folders.hpp"
+#include "kitti2015_layout.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 
 namespace fs = std::filesystem;
@@ -16,75 +17,9 @@ namespace lidar_sgm {
 namespace sequence {
 namespace {
 
-bool isScan(const fs::path& path) {
-  const std::string extension = io::lowerExtension(path.string());
-  return extension == ".bin" || extension == ".pcd" || extension == ".ply";
-}
-
-/// `folder/stem.png` when it is a file, else "".
-std::string imageFor(const fs::path& folder, const std::string& stem) {
-  const fs::path image = folder / (stem + ".png");
-  std::error_code ec;
-  return fs::is_regular_file(image, ec) ? image.string() : std::string();
-}
-
-/// The left images' stems of `folder` (PNG files).
-std::set<std::string> imageStems(const fs::path& folder) {
-  std::set<std::string> stems;
-  std::error_code ec;
-  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    std::error_code typeError;
-    if (it->is_regular_file(typeError) && io::lowerExtension(it->path().string()) == ".png") {
-      stems.insert(it->path().stem().string());
-    }
-  }
-  return stems;
-}
-
-/// Whether a left image without a scan is a frame whose scan is missing.
-enum class MissingScans { Ignored, Reported };
-
-/// One frame per scan in `scanFolder`, in name order; `calibOf` gives a frame's calibration file.
-/// With MissingScans::Reported (a sequence, where every image has its scan) a left image without
-/// a scan is a frame too, whose scan path names the missing file: it fails, with that cause,
-/// instead of vanishing from the sequence.
-template <typename CalibOf>
-std::vector<Frame> framesOf(const fs::path& scanFolder, const fs::path& leftFolder, const fs::path& rightFolder,
-                            const std::string& namePrefix, CalibrationFormat format, MissingScans missing,
-                            CalibOf calibOf) {
-  std::map<std::string, fs::path> scans;  // by stem: name order
-  for (const fs::directory_entry& entry : fs::directory_iterator(scanFolder)) {
-    if (!entry.is_regular_file() || !isScan(entry.path())) continue;
-    const std::string stem = entry.path().stem().string();
-    if (!scans.emplace(stem, entry.path()).second) {
-      throw std::invalid_argument("'" + scanFolder.string() + "' has two scans named '" + stem +
-                                  "' (different extensions): which one is the frame?");
-    }
-  }
-  if (missing == MissingScans::Reported) {
-    const std::string extension = scans.empty() ? ".bin" : scans.begin()->second.extension().string();
-    for (const std::string& stem : imageStems(leftFolder)) {
-      if (scans.count(stem) == 0) scans.emplace(stem, scanFolder / (stem + extension));
-    }
-  }
-  std::vector<Frame> frames;
-  for (const auto& [stem, scan] : scans) {
-    Frame frame;
-    frame.name = namePrefix + stem;
-    frame.scan = scan.string();
-    frame.left = imageFor(leftFolder, stem);
-    frame.right = frame.left.empty() ? std::string() : imageFor(rightFolder, stem);
-    frame.calib = calibOf(stem);
-    frame.calibFormat = format;
-    frames.push_back(frame);
-  }
-  return frames;
-}
-
-bool isDirectory(const fs::path& path) {
-  std::error_code ec;
-  return fs::is_directory(path, ec);
-}
+using detail::framesOf;
+using detail::isDirectory;
+using detail::MissingScans;
 
 bool isOdometrySequence(const fs::path& dir) { return isDirectory(dir / "velodyne") && fs::exists(dir / "calib.txt"); }
 
@@ -134,11 +69,22 @@ std::vector<Frame> framesOfLayout(const fs::path& dir) {
     case Layout::KittiObject:
       return framesOf(dir / "velodyne", dir / "image_2", dir / "image_3", "", CalibrationFormat::Auto,
                       MissingScans::Ignored, [&](const std::string& stem) { return (dir / "calib" / (stem + ".txt")).string(); });
+    case Layout::KittiStereo2015:
+      return detail::kittiStereo2015Frames(dir);
     case Layout::KittiOdometryRoot:
     case Layout::ListFile:
       break;
   }
   return odometrySequences(isDirectory(dir / "sequences") ? dir / "sequences" : dir);
+}
+
+/// A velodyne/ folder whose calibration is missing is no layout at all: say which files were
+/// looked for beside it, the likeliest fault.
+std::string calibrationHint(const fs::path& dir) {
+  if (!isDirectory(dir / "velodyne")) return "";
+  return ". It has velodyne/ but none of the calibrations looked for beside it: calib.txt (KITTI odometry), "
+         "calib/ with calib/NNNNNN.txt per scan (KITTI object), calib/calib_cam_to_cam.txt with "
+         "calib/calib_velo_to_cam.txt, or calib_cam_to_cam/ with calib_velo_to_cam/ (KITTI stereo 2015)";
 }
 
 }  // namespace
@@ -149,6 +95,7 @@ const char* layoutName(Layout layout) {
     case Layout::KittiOdometryRoot: return "KITTI odometry root";
     case Layout::KittiRawDrive: return "KITTI raw drive";
     case Layout::KittiObject: return "KITTI object layout";
+    case Layout::KittiStereo2015: return "KITTI stereo 2015 training";
     case Layout::ListFile: return "list file";
   }
   return "unknown layout";
@@ -158,6 +105,8 @@ Layout directoryLayout(const std::string& dir) {
   const fs::path path(dir);
   if (isOdometrySequence(path)) return Layout::KittiOdometrySequence;
   if (isRawDrive(path)) return Layout::KittiRawDrive;
+  // Before the object layout: KITTI 2015's shared calibration is in a calib/ folder too.
+  if (detail::isKittiStereo2015(path)) return Layout::KittiStereo2015;
   if (isObjectLayout(path)) return Layout::KittiObject;
   return Layout::KittiOdometryRoot;
 }
@@ -169,8 +118,10 @@ std::vector<Frame> framesFromDirectory(const std::string& dir) {
     throw std::invalid_argument(
         "-input_dir '" + dir +
         "' has no frames: expected a KITTI odometry sequence (velodyne/, calib.txt, image_2/, image_3/), a KITTI "
-        "odometry root (sequences/NN/), a KITTI raw drive (velodyne_points/data/, image_02/data/, image_03/data/) "
-        "or the KITTI object layout (velodyne/, calib/, image_2/, image_3/), with .bin, .pcd or .ply scans");
+        "odometry root (sequences/NN/), a KITTI raw drive (velodyne_points/data/, image_02/data/, image_03/data/), "
+        "the KITTI object layout (velodyne/, calib/, image_2/, image_3/) or KITTI stereo 2015 training (velodyne/, "
+        "image_2/, image_3/, calib/calib_cam_to_cam.txt or calib_cam_to_cam/), with .bin, .pcd or .ply scans" +
+        calibrationHint(fs::path(dir)));
   }
   return frames;
 }

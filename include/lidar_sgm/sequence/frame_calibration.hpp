@@ -7,8 +7,9 @@
 namespace lidar_sgm {
 namespace sequence {
 
-/// `frame.calib` read in `frame.calibFormat` (io::readCalibration, or
-/// io::readKittiOdometryCalibration); `width`/`height` as those (0 = from the images).
+/// `frame.calib` read in `frame.calibFormat` (io::readCalibration, io::readKittiOdometryCalibration,
+/// or io::readKittiRawCalibration with `frame.veloToCam`); `width`/`height` as those (0 = from the
+/// images; KITTI raw's files give their own).
 geometry::StereoCalibration readFrameCalibration(const Frame& frame, int width = 0, int height = 0);
 
 }  // namespace sequence

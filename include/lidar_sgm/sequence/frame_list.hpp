@@ -1,7 +1,7 @@
 #pragma once
 // The frames of a sequence, found in the layouts people have: KITTI odometry, KITTI raw, KITTI
-// object, or a plain list file. Only paths are gathered here; nothing is read but folder listings
-// and the list file.
+// object, KITTI stereo 2015 training with raw scans, or a plain list file. Only paths are gathered
+// here; nothing is read but folder listings and the list file.
 
 #include <string>
 #include <vector>
@@ -11,8 +11,10 @@ namespace sequence {
 
 /// How a frame's calibration file is read.
 enum class CalibrationFormat {
-  Auto,          ///< io::readCalibration: KITTI object .txt, KITTI raw (folder or calib_cam_to_cam.txt), YAML
-  KittiOdometry  ///< KITTI odometry calib.txt (P0..P3 and Tr, already rectified)
+  Auto,           ///< io::readCalibration: KITTI object .txt, KITTI raw (folder or calib_cam_to_cam.txt), YAML
+  KittiOdometry,  ///< KITTI odometry calib.txt (P0..P3 and Tr, already rectified)
+  KittiRawPair    ///< io::readKittiRawCalibration(calib, veloToCam): KITTI raw's two files in any two folders
+                  ///< (KITTI stereo 2015's per-frame calib_cam_to_cam/NNNNNN.txt, calib_velo_to_cam/NNNNNN.txt)
 };
 
 /// One frame: its name (unique within the sequence, the output's stem) and its files; `left`
@@ -25,7 +27,8 @@ struct Frame {
   std::string right;
   std::string calib;
   CalibrationFormat calibFormat = CalibrationFormat::Auto;
-  std::string oxts;  ///< a KITTI raw drive's OXTS packet of the frame (oxts/data/<stem>.txt), present or not; else ""
+  std::string veloToCam;  ///< CalibrationFormat::KittiRawPair: the calib_velo_to_cam file beside `calib`; else ""
+  std::string oxts;       ///< a KITTI raw drive's OXTS packet of the frame (oxts/data/<stem>.txt), present or not; else ""
 };
 
 /// The layouts framesFromDirectory() reads, and the list file.
@@ -34,6 +37,8 @@ enum class Layout {
   KittiOdometryRoot,      ///< sequences/NN/...: every sequence
   KittiRawDrive,          ///< {velodyne_points,image_02,image_03}/data/, oxts/data/
   KittiObject,            ///< velodyne/, image_2/, image_3/, calib/NNNNNN.txt
+  KittiStereo2015,        ///< velodyne/NNNNNN_10.bin, image_2/, image_3/, calib/calib_{cam,velo}_to_cam.txt
+                          ///< or calib_cam_to_cam/NNNNNN.txt, calib_velo_to_cam/NNNNNN.txt
   ListFile                ///< -list FILE
 };
 
@@ -51,10 +56,18 @@ Layout directoryLayout(const std::string& dir);
 ///  - KITTI raw drive `{velodyne_points,image_02,image_03}/data`, calibration in the folder above
 ///    (the date's calib_cam_to_cam.txt, calib_velo_to_cam.txt); names "0000000000"; each frame's
 ///    OXTS packet `oxts/data/<stem>.txt` (its pose, for -map);
+///  - KITTI stereo 2015 training `{image_2,image_3}/NNNNNN_10.png` with the raw scans
+///    `velodyne/NNNNNN_10.bin` beside them; names "000007_10"; only frames with a scan (the `_11`
+///    images and the ground-truth folders are not frames); the calibration is KITTI 2015's own per
+///    frame, `calib_cam_to_cam/NNNNNN.txt` + `calib_velo_to_cam/NNNNNN.txt` (or NNNNNN_10.txt),
+///    when those folders exist, else one KITTI raw pair `calib/calib_cam_to_cam.txt` +
+///    `calib/calib_velo_to_cam.txt` for every frame. Told from the object layout by that
+///    calibration, or by its scans' names (NNNNNN_10);
 ///  - KITTI object `{velodyne,image_2,image_3,calib}` with calib/NNNNNN.txt per frame.
 /// A scan is any .bin, .pcd or .ply file of the scan folder; its images are the .png of the same
 /// stem, when present. Throws std::invalid_argument naming `dir` and the layouts it looked for
-/// when it is none of them, or when it has no scan.
+/// when it is none of them, or when it has no scan; for a scan folder without a calibration, the
+/// calibration files looked for.
 std::vector<Frame> framesFromDirectory(const std::string& dir);
 
 /// The frames of a list file: one frame per line, "SCAN LEFT RIGHT CALIB" separated by blanks,
