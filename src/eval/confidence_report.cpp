@@ -1,3 +1,4 @@
+#include "report_format.hpp"
 #include "lidar_sgm/eval/confidence_report.hpp"
 
 #include <cstdio>
@@ -11,14 +12,6 @@
 namespace lidar_sgm {
 namespace eval {
 namespace {
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
-
-std::string percent(double share, int decimals = 2) { return fixed(100.0 * share, decimals); }
 
 /// The colours of the alpha-sweep and reliability plots (matplotlib's first four), BGR.
 cv::Scalar colorOf(std::size_t i) {

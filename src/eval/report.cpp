@@ -1,3 +1,4 @@
+#include "report_format.hpp"
 #include "lidar_sgm/eval/report.hpp"
 
 #include <algorithm>
@@ -13,12 +14,6 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Markdown
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
 
 /// A '|' inside a cell would end it.
 std::string cell(const std::string& text) {

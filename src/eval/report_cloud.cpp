@@ -1,3 +1,4 @@
+#include "report_format.hpp"
 #include "report_cloud.hpp"
 
 #include <cstdio>
@@ -8,14 +9,6 @@
 namespace lidar_sgm {
 namespace eval {
 namespace {
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
-
-std::string percent(double share) { return fixed(100.0 * share, 2); }
 
 nlohmann::json scoreJson(const CloudScore& s) {
   return {{"precision", s.precision}, {"completeness", s.completeness}, {"f_score", s.fScore}};

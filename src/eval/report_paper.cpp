@@ -3,23 +3,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "report_format.hpp"
 #include "lidar_sgm/eval/report.hpp"
 
 namespace lidar_sgm {
 namespace eval {
 namespace {
 
-std::string percent(double share) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.2f", 100.0 * share);
-  return text;
-}
-
-std::string pixels(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3f", value);
-  return text;
-}
+std::string pixels(double value) { return fixed(value, 3); }
 
 }  // namespace
 
