@@ -108,7 +108,7 @@ void printHelp(const char* program) {
       "  -jobs J                  frames densified at once, each on its own worker (0 = one per CPU this\n"
       "                           process may use); the matcher threads of each are -threads, else those\n"
       "                           CPUs shared out; neither changes a cloud (default: 0)\n" +
-      lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Speed, lidar_sgm::OptionScope::Cloud);
+      lidar_sgm::optionsHelp(lidar_sgm::OptionGroup::Speed, lidar_sgm::OptionScope::Cloud);
   const std::vector<lidar_sgm::apps::HelpExample> examples{
       {"A drive rendered by 'lidar_sgm_synth -out drive -sequence 3 -step 1' (KITTI odometry layout), with its map:",
        "lidar_sgm_batch -input_dir drive -output_dir drive_dense -map drive_map.pcd"},
@@ -120,10 +120,10 @@ void printHelp(const char* program) {
   const std::string text = lidar_sgm::apps::helpText(usage,
                                                      {{"Inputs", inputs},
                                                       {"Outputs", outputs},
-                                                      {"Method", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Method,
+                                                      {"Method", lidar_sgm::optionsHelp(lidar_sgm::OptionGroup::Method,
                                                                                             lidar_sgm::OptionScope::Cloud)},
                                                       {"Speed", speed},
-                                                      {"Filters", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Filters,
+                                                      {"Filters", lidar_sgm::optionsHelp(lidar_sgm::OptionGroup::Filters,
                                                                                              lidar_sgm::OptionScope::Cloud)}},
                                                      examples);
   std::fputs(text.c_str(), stdout);

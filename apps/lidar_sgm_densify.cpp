@@ -98,9 +98,9 @@ void printHelp(const char* program) {
       usage,
       {{"Inputs", inputs},
        {"Outputs", outputs},
-       {"Method", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Method, lidar_sgm::OptionScope::Cloud)},
-       {"Speed", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Speed, lidar_sgm::OptionScope::Cloud)},
-       {"Filters", lidar_sgm::apps::configHelp(lidar_sgm::OptionGroup::Filters, lidar_sgm::OptionScope::Cloud)}},
+       {"Method", lidar_sgm::optionsHelp(lidar_sgm::OptionGroup::Method, lidar_sgm::OptionScope::Cloud)},
+       {"Speed", lidar_sgm::optionsHelp(lidar_sgm::OptionGroup::Speed, lidar_sgm::OptionScope::Cloud)},
+       {"Filters", lidar_sgm::optionsHelp(lidar_sgm::OptionGroup::Filters, lidar_sgm::OptionScope::Cloud)}},
       examples);
   std::fputs(text.c_str(), stdout);
 }

@@ -21,7 +21,7 @@
 namespace fs = std::filesystem;
 using lidar_sgm::apps::Arguments;
 using lidar_sgm::apps::Timer;
-using lidar_sgm::apps::configHelp;
+using lidar_sgm::optionsHelp;
 using lidar_sgm::apps::joined;
 using lidar_sgm::apps::samePath;
 using lidar_sgm::OptionGroup;
@@ -60,9 +60,9 @@ void printHelp(const char* program) {
   const std::string text = lidar_sgm::apps::helpText(usage,
                                                      {{"Inputs", inputs},
                                                       {"Outputs", outputs},
-                                                      {"Method", configHelp(OptionGroup::Method, OptionScope::Disparity)},
-                                                      {"Speed", configHelp(OptionGroup::Speed, OptionScope::Disparity)},
-                                                      {"Filters", configHelp(OptionGroup::Filters, OptionScope::Disparity)}},
+                                                      {"Method", optionsHelp(OptionGroup::Method, OptionScope::Disparity)},
+                                                      {"Speed", optionsHelp(OptionGroup::Speed, OptionScope::Disparity)},
+                                                      {"Filters", optionsHelp(OptionGroup::Filters, OptionScope::Disparity)}},
                                                      examples);
   std::fputs(text.c_str(), stdout);
 }

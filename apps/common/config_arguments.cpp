@@ -32,7 +32,5 @@ DensifierConfig configFrom(const Arguments& args, OptionScope scope) {
   return configFromOptions(values, flags);
 }
 
-std::string configHelp(OptionGroup group, OptionScope scope) { return optionsHelp(group, scope); }
-
 }  // namespace apps
 }  // namespace lidar_sgm

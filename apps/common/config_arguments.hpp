@@ -1,7 +1,7 @@
 #pragma once
 // The command line's side of the option table (lidar_sgm/pipeline/config_options.hpp): the names
-// a tool registers with its parser, the DensifierConfig a command line gives, and the help of
-// each group. The table holds the names, defaults, checks and help; nothing here repeats them.
+// a tool registers with its parser and the DensifierConfig a command line gives (the help of each
+// group is the table's own optionsHelp). The table holds the names, defaults, checks and help.
 
 #include <set>
 #include <string>
@@ -19,9 +19,6 @@ std::set<std::string> configFlagOptions(OptionScope scope);
 /// The configuration the command line gives: the table's options in `args` (the tool's own
 /// options are left to it) over the default. std::invalid_argument names the bad option.
 DensifierConfig configFrom(const Arguments& args, OptionScope scope);
-
-/// The help lines of `group`'s options acting in `scope`, with their defaults.
-std::string configHelp(OptionGroup group, OptionScope scope);
 
 }  // namespace apps
 }  // namespace lidar_sgm

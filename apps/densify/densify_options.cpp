@@ -70,7 +70,7 @@ std::string outputOptionsHelp() {
          "                           fastest), compressed (PCD binary_compressed: PCL's LZF, 10-20x slower and\n"
          "                           only ~3 % smaller for a dense cloud; not for PLY) or ascii (text, ~60x\n"
          "                           slower) (default: binary)\n" +
-         configHelp(OptionGroup::Output, OptionScope::Cloud) +
+         optionsHelp(OptionGroup::Output, OptionScope::Cloud) +
          "  -voxel V                 down-sample to one point per V-metre voxel (pcl::VoxelGrid: the centroid,\n"
          "                           color and confidence averaged; unorganized), 0 = off (default: 0)\n";
 }

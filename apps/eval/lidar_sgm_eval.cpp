@@ -70,7 +70,7 @@ void printHelp(const char* program) {
       "                     mode; each frame's search range is rounded up to a multiple of 32) (default: 1)\n"
       "  -backend NAME      the LiDAR-SGM methods' backend: auto, cpu_ref, cpu or cuda (default: auto)\n";
   const std::string filters = "  the LiDAR-SGM methods run with these, as the tools:\n" +
-                              apps::configHelp(OptionGroup::Filters, OptionScope::Disparity);
+                              optionsHelp(OptionGroup::Filters, OptionScope::Disparity);
   const std::vector<apps::HelpExample> examples{
       {"The documented run: every protocol, on the KITTI data in ../shared/data (minutes):",
        "lidar_sgm_eval -out out/eval"},

@@ -198,7 +198,7 @@ void Densifier::match(const LidarPoints* lidar) {
   LidarPoints consistent;
   std::size_t inconsistent = 0;
   if (useLidar && !left.empty() && config_.lidarConsistency.enabled) {
-    std::vector<LidarSample> samples = samplesOf(*lidar);
+    std::vector<LidarSample> samples = projected_.samples;  // the scan's samples, already at hand
     inconsistent = dropInconsistentLidar(left, right, samples, config_.lidarConsistency);
     if (inconsistent > 0) {
       consistent = LidarPoints(lidar->width(), lidar->height(), samples);
