@@ -3,24 +3,44 @@
 # scripts/gpu_check_prepare.sh filled .gpu_check/ on a machine with the full toolchain:
 #   1. the machine (nvidia-smi, nvcc, cmake, g++)
 #   2. configure and build test_backends, test_core, test_bench and lidar_sgm_bench with
-#      -DLIDAR_SGM_WITH_CUDA=ON (GoogleTest and CLI11 from .gpu_check/)
+#      -DLIDAR_SGM_WITH_CUDA=ON (GoogleTest and CLI11 from .gpu_check/), as the GPU machine has
+#      them: every package it lacks (Eigen, OpenCV, PCL, Highway, GoogleTest, CLI11, ...) is hidden
+#      from CMake here too, so that the tree built is the same on every machine
 #   3. the CUDA tests against cpu_ref, the core's tests, the PGM frame tests
-#   4. lidar_sgm_bench on .gpu_check/frame: fused, stereo-only, LiDAR-only at 4 and 8 paths, fused
+#   4. compute-sanitizer's memcheck and racecheck over the CUDA test cases
+#   5. lidar_sgm_bench on .gpu_check/frame: fused, stereo-only, LiDAR-only at 4 and 8 paths, fused
 #      at half scale, 128 disparities
-#   5. libSGM built from .gpu_check/libSGM with nvcc, and timed on the same pair (4 and 8 paths)
-#   6. a table: ours (kernel, with transfers) beside libSGM
+#   6. libSGM built from .gpu_check/libSGM with nvcc, and timed on the same pair (4 and 8 paths)
+#   7. a table: ours (kernel, with transfers) beside libSGM
 # A step that fails is recorded and the later steps still run; the exit code is 1 if any step
 # failed. Everything goes to $OUT when it is set, else to out/gpu_check/.
+#
+#   scripts/gpu_check.sh             on the GPU machine
+#   scripts/gpu_check.sh --dry-run   here, without a GPU: prepares .gpu_check/ if it is missing
+#                                    (without libSGM), then configures and builds the GPU machine's
+#                                    tree with nvcc, and libSGM when .gpu_check/ has it; the steps
+#                                    that need a GPU are listed as skipped. CI runs it.
 #
 # Environment (defaults for the GPU machine):
 #   GPU_CHECK_BACKEND=cuda   the bench's backend (cpu: try the script on a machine without a GPU)
 #   GPU_CHECK_RUNS=100       timed frames per configuration (after GPU_CHECK_WARMUPS=10)
-#   GPU_CHECK_JOBS=16        build jobs
+#   GPU_CHECK_JOBS=16        build jobs (--dry-run: the cores here)
 #   GPU_CHECK_BUILD=build-gpu-check          the build folder
+#   GPU_CHECK_PREP=.gpu_check                what scripts/gpu_check_prepare.sh filled
+#   GPU_CHECK_CUDA_ARCHITECTURES=90          the GPU's architecture (H100/H200: 90)
 #   GPU_CHECK_TEST_FILTER='*cuda*:*Cuda*:*Reuse*:*Registry*:*DeviceFrames*'   test_backends' filter
-#   GPU_CHECK_CMAKE_ARGS     more configure arguments (e.g. to hide installed packages)
-#   GPU_CHECK_TOTAL_S=450    the whole script's budget: a step gets what is left of it
+#   GPU_CHECK_CMAKE_ARGS     more configure arguments
+#   GPU_CHECK_TOTAL_S=450    the whole script's budget (--dry-run: 3600): a step gets what is left of it
 set -uo pipefail
+
+dry_run=0
+for argument in "$@"; do
+  case "$argument" in
+    --dry-run) dry_run=1 ;;
+    -h | --help) sed -n '2,/^set -uo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    *) echo "gpu_check: unknown argument '$argument' (try --help)" >&2; exit 2 ;;
+  esac
+done
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root" || exit 1
@@ -28,12 +48,14 @@ out=${OUT:-$root/out/gpu_check}
 backend=${GPU_CHECK_BACKEND:-cuda}
 runs=${GPU_CHECK_RUNS:-100}
 warmups=${GPU_CHECK_WARMUPS:-10}
-jobs=${GPU_CHECK_JOBS:-16}
+jobs=${GPU_CHECK_JOBS:-$( ((dry_run)) && nproc || echo 16)}
 build=${GPU_CHECK_BUILD:-build-gpu-check}
 test_filter=${GPU_CHECK_TEST_FILTER:-'*cuda*:*Cuda*:*Reuse*:*Registry*:*DeviceFrames*'}
-prep=$root/.gpu_check
+prep=${GPU_CHECK_PREP:-$root/.gpu_check}
+cuda_architectures=${GPU_CHECK_CUDA_ARCHITECTURES:-90}
 frame=$prep/frame
-deadline=$((SECONDS + ${GPU_CHECK_TOTAL_S:-450}))
+# A dry run compiles on a small machine: more time, nothing of the GPU's.
+deadline=$((SECONDS + ${GPU_CHECK_TOTAL_S:-$( ((dry_run)) && echo 3600 || echo 450)}))
 mkdir -p "$out"
 log=$out/gpu_check.log
 : > "$log"
@@ -83,18 +105,31 @@ machine() {
     nvidia-smi
   else
     echo "no nvidia-smi on this machine"
-    [[ "$backend" != cuda ]] || return 1
+    [[ "$backend" != cuda ]] || ((dry_run)) || return 1
   fi
   echo
   uname -a
   echo "cores: $(nproc)"
   command -v nvcc >/dev/null && nvcc --version | tail -n 2
+  command -v nvcc >/dev/null || ! ((dry_run)) || { echo "no nvcc: a dry run builds with it"; return 1; }
   cmake --version | head -n 1
   "${CXX:-g++}" --version | head -n 1
   command -v ninja >/dev/null && echo "ninja $(ninja --version)"
   git -C "$root" log -1 --format='lidar_sgm %h %s' 2>/dev/null || true
   [[ -d "$prep" ]] && cat "$prep/MANIFEST.txt"
-  [[ -d "$prep" ]] || { echo "no $prep: run scripts/gpu_check_prepare.sh first"; return 1; }
+  [[ -d "$prep" ]] || {
+    echo "no $prep: run scripts/gpu_check_prepare.sh on a machine with the full toolchain first, and"
+    echo "bring $(basename "$prep")/ along with the tree (it is git-ignored: a copy of what git tracks lacks it)"
+    return 1
+  }
+}
+
+# --dry-run: what gpu_check_prepare.sh makes, where it is missing; libSGM only from a source tree
+# given in LIBSGM_SRC (this machine may have no network).
+prepare() {
+  local args=(--no-libsgm)
+  [[ -n "${LIBSGM_SRC:-}" ]] && args=("$LIBSGM_SRC")
+  GPU_CHECK_PREP="$prep" "$root/scripts/gpu_check_prepare.sh" "${args[@]}"
 }
 
 configure() {
@@ -102,8 +137,17 @@ configure() {
   # Ninja where it is and the build folder is new (a folder keeps the generator it was made with).
   [[ ! -f "$build/CMakeCache.txt" ]] && command -v ninja >/dev/null && generator=(-G Ninja)
   # shellcheck disable=SC2086  # GPU_CHECK_CMAKE_ARGS is a list of arguments
-  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DLIDAR_SGM_BUILD_TESTS=ON \
-    -DLIDAR_SGM_WITH_CUDA="${GPU_CHECK_WITH_CUDA:-ON}" -DCMAKE_CUDA_ARCHITECTURES=90 \
+  # The packages the GPU machine lacks, hidden here too: the same tree is built on every machine
+  # (GoogleTest and CLI11 then come from $prep).
+  local hidden=() package lidar_sgm_launcher=()
+  # ccache where it is installed (here, for CI's dry run; the GPU machine has none).
+  source "$root/scripts/ccache_env.sh"
+  for package in Eigen3 OpenCV PCL yaml-cpp Open3D CLI11 GTest hwy pybind11 nlohmann_json benchmark; do
+    hidden+=("-DCMAKE_DISABLE_FIND_PACKAGE_$package=ON")
+  done
+  # --no-warn-unused-cli: a hidden package the tree never looks for (without Eigen: PCL, OpenCV) is no news.
+  cmake --no-warn-unused-cli -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DLIDAR_SGM_BUILD_TESTS=ON \
+    -DLIDAR_SGM_WITH_CUDA="${GPU_CHECK_WITH_CUDA:-ON}" -DCMAKE_CUDA_ARCHITECTURES="$cuda_architectures" "${hidden[@]}" "${lidar_sgm_launcher[@]}" \
     -DLIDAR_SGM_GTEST_SOURCE_DIR="$prep/googletest" -DLIDAR_SGM_CLI11_INCLUDE_DIR="$prep/cli11" \
     -DCMAKE_POLICY_VERSION_MINIMUM=3.5 ${GPU_CHECK_CMAKE_ARGS:-}
 }
@@ -124,6 +168,17 @@ cuda_tests() {
     echo "no CUDA test ran (is the cuda backend built?)"
     return 1
   fi
+}
+
+# compute-sanitizer (the CUDA toolkit's) over the CUDA test cases: memcheck (out-of-bounds and
+# misaligned device accesses, leaks) or racecheck (shared-memory hazards between a block's threads).
+cuda_sanitizer() {
+  local sanitizer
+  sanitizer=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
+  [[ -x "$sanitizer" ]] || { echo "no compute-sanitizer in PATH or /usr/local/cuda/bin"; return 1; }
+  local extra=()
+  [[ "$1" == memcheck ]] && extra=(--leak-check full)
+  "$sanitizer" --tool "$1" "${extra[@]}" --error-exitcode 1 "$build/tests/test_backends" --gtest_filter="$test_filter"
 }
 
 bench() {
@@ -200,20 +255,40 @@ table() {
 }
 
 # The steps run in child shells (under timeout): they see these.
-export root out backend runs warmups jobs build test_filter prep frame
-export -f machine configure build_targets cuda_tests bench libsgm_build libsgm_run
+export root out backend runs warmups jobs build test_filter prep frame cuda_architectures dry_run
+export -f machine prepare configure build_targets cuda_tests cuda_sanitizer bench libsgm_build libsgm_run
 
+# skip NAME: a step that needs the GPU, in a dry run.
+skip() {
+  echo "--- $1: skipped (dry run: needs a GPU)" | tee -a "$log"
+  summary+=("$1: skipped (dry run)")
+}
+# gpu_step NAME CAP_S COMMAND...: step on the GPU machine, skip in a dry run.
+gpu_step() {
+  if ((dry_run)); then skip "$1"; else step "$@"; fi
+}
+
+if ((dry_run)) && [[ ! -d "$prep" ]]; then
+  step prepare 600 prepare
+fi
 step machine 60 machine
 step configure 120 configure
-step build 300 build_targets
-step test_backends 180 cuda_tests
-step test_core 120 "$build/tests/test_core"
-step test_bench 30 "$build/tests/test_bench"
-step bench_paths4 120 bench 4 fused,stereo,lidar,half
-step bench_paths8 90 bench 8 fused,stereo,lidar
-step libsgm_build 180 libsgm_build
-step libsgm_paths4 60 libsgm_run 4
-step libsgm_paths8 60 libsgm_run 8
+step build "$( ((dry_run)) && echo 1500 || echo 300)" build_targets
+gpu_step test_backends 180 cuda_tests
+gpu_step test_core 120 "$build/tests/test_core"
+gpu_step test_bench 30 "$build/tests/test_bench"
+gpu_step memcheck 90 cuda_sanitizer memcheck
+gpu_step racecheck 90 cuda_sanitizer racecheck
+gpu_step bench_paths4 120 bench 4 fused,stereo,lidar,half
+gpu_step bench_paths8 90 bench 8 fused,stereo,lidar
+if [[ -d "$prep/libSGM" ]] || ((!dry_run)); then
+  step libsgm_build "$( ((dry_run)) && echo 600 || echo 180)" libsgm_build
+else
+  echo "--- libsgm_build: skipped (no libSGM in $prep)" | tee -a "$log"
+  summary+=("libsgm_build: skipped (no libSGM in $prep)")
+fi
+gpu_step libsgm_paths4 60 libsgm_run 4
+gpu_step libsgm_paths8 60 libsgm_run 8
 
 {
   echo
@@ -228,4 +303,8 @@ if ((${#failed[@]} > 0)); then
   echo "gpu_check: ${#failed[@]} step(s) failed: ${failed[*]}" | tee -a "$log"
   exit 1
 fi
-echo "gpu_check: every step passed" | tee -a "$log"
+if ((dry_run)); then
+  echo "gpu_check --dry-run: every step that runs without a GPU passed" | tee -a "$log"
+else
+  echo "gpu_check: every step passed" | tee -a "$log"
+fi

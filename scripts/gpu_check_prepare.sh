@@ -8,21 +8,30 @@
 #   .gpu_check/cli11/CLI/   CLI11's headers
 #   .gpu_check/libSGM/      libSGM's sources, the GPU SGM we compare with (never committed)
 #
-#   scripts/gpu_check_prepare.sh [LIBSGM_SOURCE_TREE]
+#   scripts/gpu_check_prepare.sh [LIBSGM_SOURCE_TREE | --no-libsgm]
 #
-# The libSGM tree: the argument, else $LIBSGM_SRC, else a clone of github.com/fixstars/libSGM.
-# Environment: BUILD_DIR (default build; configured if it is not yet), GTEST_SRC (default
+# The libSGM tree: the argument, else $LIBSGM_SRC, else a clone of github.com/fixstars/libSGM;
+# --no-libsgm leaves it out (gpu_check.sh then skips the comparison).
+# Then bring .gpu_check/ along with the tree to the GPU machine: it is git-ignored, so a copy of
+# what git tracks lacks it.
+# Environment: GPU_CHECK_PREP (default .gpu_check: where to write; gpu_check.sh reads the same
+# variable), BUILD_DIR (default build; configured if it is not yet), GTEST_SRC (default
 # /usr/src/googletest), CLI11_INCLUDE (the folder holding CLI/, default /usr/include),
 # LIDAR_SGM_DATA (the shared data, as for the bench).
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
-dest=.gpu_check
+dest=${GPU_CHECK_PREP:-.gpu_check}
 build=${BUILD_DIR:-build}
 gtest_src=${GTEST_SRC:-/usr/src/googletest}
 cli11_include=${CLI11_INCLUDE:-/usr/include}
 libsgm_src=${1:-${LIBSGM_SRC:-}}
+with_libsgm=1
+if [[ "$libsgm_src" == --no-libsgm ]]; then
+  with_libsgm=0
+  libsgm_src=""
+fi
 max_mb=60
 
 fail() { echo "gpu_check_prepare: $*" >&2; exit 1; }
@@ -48,8 +57,10 @@ cp -r "$gtest_src" "$dest/googletest"
 mkdir -p "$dest/cli11"
 cp -r "$cli11_include/CLI" "$dest/cli11/CLI"
 
-libsgm_origin=""
-if [[ -n "$libsgm_src" ]]; then
+libsgm_origin="none (--no-libsgm)"
+if ((!with_libsgm)); then
+  :
+elif [[ -n "$libsgm_src" ]]; then
   mkdir -p "$dest/libSGM"
   tar -C "$libsgm_src" --exclude=.git -cf - . | tar -C "$dest/libSGM" -xf -
   libsgm_origin="copied from $libsgm_src"
@@ -72,7 +83,7 @@ fi
   echo "libSGM:     $libsgm_origin"
 } > "$dest/MANIFEST.txt"
 
-grep -qxF '/.gpu_check/' .gitignore || echo '/.gpu_check/' >> .gitignore
+[[ "$dest" != .gpu_check ]] || grep -qxF '/.gpu_check/' .gitignore || echo '/.gpu_check/' >> .gitignore
 
 cat "$dest/MANIFEST.txt"
 size_kb=$(du -sk "$dest" | cut -f1)

@@ -66,8 +66,9 @@ class MatcherBackend {
   /// Whether the backend takes frames in device memory (the functions below); if not, the
   /// facade refuses computeOnDevice and never calls them.
   virtual bool readsDeviceMemory() const { return false; }
-  /// Copies the device frame's LiDAR samples (if any) into host.samples and, with `images`, its
-  /// left and right images into host.left / host.right.
+  /// The first call for a device frame: orders the backend's work after the work queued so far on
+  /// frame.stream (the inputs' writer), then copies the device frame's LiDAR samples (if any)
+  /// into host.samples and, with `images`, its left and right images into host.left / host.right.
   virtual void copyToHost(const DeviceFrame& frame, bool images, DeviceFrameCopy& host);
   /// Copies a host disparity image into device memory of the same size.
   virtual void copyToDevice(ImageView<const std::int16_t> host, ImageView<std::int16_t> device);

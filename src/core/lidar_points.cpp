@@ -29,8 +29,13 @@ LidarPoints::LidarPoints(int width, int height, const std::vector<LidarSample>& 
   // Counting sort into compressed rows: prefix sums give each pixel's first slot.
   for (std::size_t i = 1; i < pixelStart_.size(); ++i) pixelStart_[i] += pixelStart_[i - 1];
   disparities16_.resize(samples.size());
+  pointPixels_.resize(samples.size());
   std::vector<int> next(pixelStart_.begin(), pixelStart_.end() - 1);
-  for (const LidarSample& s : samples) disparities16_[next[index(s.x, s.y)]++] = s.disparity16;
+  for (const LidarSample& s : samples) {
+    const std::size_t pixel = index(s.x, s.y);
+    pointPixels_[static_cast<std::size_t>(next[pixel])] = static_cast<int>(pixel);
+    disparities16_[static_cast<std::size_t>(next[pixel]++)] = s.disparity16;
+  }
 }
 
 LidarPoints LidarPoints::fromDisparityImage(ImageView<const std::int16_t> sparse) {

@@ -730,6 +730,43 @@ TEST(DeviceFrames, CudaDeviceInputsAndOutputsMatchHostInputs) {
     }
   }
 }
+
+// The caller's stream is still busy when computeOnDevice is called: a long fill, then the copy
+// that writes the real images over garbage. The matcher must wait for that stream (and only by
+// its event: the caller's stream is non-blocking, so no implicit synchronisation helps).
+TEST(DeviceFrames, CudaWaitsForTheCallersStreamBeforeReadingInputs) {
+  if (!isAvailable(Backend::Cuda)) GTEST_SKIP() << "backend cuda: " << unavailableReason(Backend::Cuda);
+  const int width = 131;
+  const int height = 61;
+  const BackendScene scene = makeBackendScene(width, height, 0, 64, 43);
+  Parameters params;
+  params.numDisparities = 64;
+  Image<std::int16_t> expected(width, height), fromDevice(width, height);
+  Matcher::create(Backend::CpuRef, params)->compute(scene.left8.view(), scene.right8.view(), nullptr, expected.view());
+  const std::size_t bytes = scene.left8.pixels.size();
+  cuda::DeviceMemory leftSource(bytes), rightSource(bytes), left(bytes), right(bytes);
+  leftSource.upload(scene.left8.pixels.data(), bytes);
+  rightSource.upload(scene.right8.pixels.data(), bytes);
+  auto matcher = Matcher::create(Backend::Cuda, params);
+  cuda::DeviceStream caller;
+  cuda::DeviceMemory busy(std::size_t{256} << 20);
+  for (int round = 0; round < 3; ++round) {
+    left.upload(std::vector<std::uint8_t>(bytes, 0x5a).data(), bytes);
+    right.upload(std::vector<std::uint8_t>(bytes, 0xa5).data(), bytes);
+    for (int i = 0; i < 8; ++i) busy.fillAsync(i, caller);
+    left.copyAsync(leftSource, bytes, caller);
+    right.copyAsync(rightSource, bytes, caller);
+    DeviceFrame frame;
+    frame.left = ImageView<const std::uint8_t>(static_cast<const std::uint8_t*>(left.data()), width, height,
+                                               scene.left8.stride);
+    frame.right = ImageView<const std::uint8_t>(static_cast<const std::uint8_t*>(right.data()), width, height,
+                                                scene.right8.stride);
+    frame.stream = caller.handle();
+    matcher->computeOnDevice(frame, fromDevice.view());
+    EXPECT_TRUE(sameImages(expected, fromDevice)) << "round " << round;
+    caller.synchronize();
+  }
+}
 #endif
 
 TEST(BackendRegistry, AutoIsTheFastestBackendThatRunsHere) {

@@ -2,6 +2,7 @@
 // and the LidarPoints container, each checked against values worked out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -399,6 +400,20 @@ TEST(LidarPoints, BucketsKeepAllPointsInOrder) {
   EXPECT_EQ(points.count(2, 0), 0);
   EXPECT_EQ(points.count(0, 1), 0);
   EXPECT_EQ(points.count(1, 1), 0);
+}
+
+// pointPixels() with pixelStarts(): what a backend rebuilds the compressed rows from (a lower
+// bound of each pixel among the points' pixels gives its first point).
+TEST(LidarPoints, PointPixelsNameEachPointsPixelInTheCompressedOrder) {
+  const LidarPoints points(3, 2, {{1, 0, 16}, {2, 1, 32}, {1, 0, 48}, {0, 1, 20}});
+  EXPECT_EQ(points.pointPixels(), (std::vector<int>{1, 1, 3, 5}));
+  EXPECT_EQ(points.disparities16(), (std::vector<int>{16, 48, 20, 32}));
+  const std::vector<int>& starts = points.pixelStarts();
+  const std::vector<int>& pixels = points.pointPixels();
+  for (int p = 0; p <= 6; ++p) {
+    const auto first = std::lower_bound(pixels.begin(), pixels.end(), p) - pixels.begin();
+    EXPECT_EQ(starts[static_cast<std::size_t>(p)], first) << "pixel " << p;
+  }
 }
 
 TEST(LidarPoints, EmptySampleList) {

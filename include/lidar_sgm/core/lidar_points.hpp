@@ -44,6 +44,9 @@ class LidarPoints {
   /// pixel (x, y) holds disparities16()[pixelStarts()[y * width() + x] .. pixelStarts()[... + 1]).
   const std::vector<int>& pixelStarts() const { return pixelStart_; }
   const std::vector<int>& disparities16() const { return disparities16_; }
+  /// The pixel y * width() + x of each point of disparities16(), in the same (ascending) order:
+  /// with it a backend rebuilds pixelStarts() where the points are (8 bytes a point, not 4 a pixel).
+  const std::vector<int>& pointPixels() const { return pointPixels_; }
 
  private:
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
@@ -51,6 +54,7 @@ class LidarPoints {
   int height_ = 0;
   std::vector<int> pixelStart_;      ///< width*height+1 offsets into disparities16_ (CSR)
   std::vector<int> disparities16_;   ///< per pixel, in the order the samples were given
+  std::vector<int> pointPixels_;     ///< the pixel index of each entry of disparities16_
 };
 
 }  // namespace lidar_sgm

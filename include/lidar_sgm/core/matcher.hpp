@@ -92,6 +92,12 @@ struct DeviceFrame {
   std::size_t lidarCount = 0;
   int width = 0;   ///< the frame's size when `left` is empty; else ignored
   int height = 0;
+  /// The cudaStream_t (as a pointer: no CUDA type in this header) on which the caller's work
+  /// writes these inputs. The matcher's work on them is ordered after the work queued on it so
+  /// far (an event the matcher's own stream waits for: nothing else is synchronised); nullptr is
+  /// the legacy default stream, which waits for every blocking stream. computeOnDevice returns
+  /// when its results are written, so work queued afterwards on any stream may read them.
+  void* stream = nullptr;
 };
 
 /// Computes a dense disparity image for the left rectified camera.

@@ -1,5 +1,6 @@
 #include "backends/cuda/cuda_matcher.hpp"
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -60,6 +61,20 @@ DeviceVolume<T> denseVolume(DeviceBuffer<T>& buffer, int width, int height, int 
   return DeviceVolume<T>{buffer.data(), width, height, D};
 }
 
+// A W x H image at `offset` bytes into the read-back allocation (readback.hpp).
+template <typename T>
+DeviceImage<T> readbackImage(DeviceBuffer<std::uint8_t>& readback, std::size_t offset, int width, int height) {
+  return DeviceImage<T>{reinterpret_cast<T*>(readback.data() + offset), width, height, width};
+}
+
+// Rows of a dense W x H image in pinned memory into a host view (any stride).
+template <typename T>
+void unpack(const std::uint8_t* pinned, std::size_t offset, ImageView<T> to) {
+  const T* from = reinterpret_cast<const T*>(pinned + offset);
+  const std::size_t rowBytes = static_cast<std::size_t>(to.width) * sizeof(T);
+  for (int y = 0; y < to.height; ++y) std::memcpy(to.row(y), from + static_cast<std::size_t>(y) * to.width, rowBytes);
+}
+
 template <typename T>
 DeviceImage<const T> asConst(DeviceImage<T> image) {
   return DeviceImage<const T>{image.data, image.width, image.height, image.stride};
@@ -97,9 +112,7 @@ void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageV
   FrameImages frame;
   reserveImages(plan, frame);
   // The result straight into the caller's device memory, or into ours to be downloaded.
-  frame.filtered = outputOnDevice
-                       ? DeviceImage<std::int16_t>{disparity.data, plan.width, plan.height, disparity.stride}
-                       : denseImage<std::int16_t>(dev.disparity, plan.width, plan.height);
+  if (outputOnDevice) frame.filtered = DeviceImage<std::int16_t>{disparity.data, plan.width, plan.height, disparity.stride};
   uploadCameras(plan, in, inputsOnDevice, frame);
   if (plan.useLidar) uploadLidar(plan, *in.lidar, frame);
   dev.mark(kUploaded);
@@ -117,9 +130,10 @@ void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageV
   dev.mark(kFiltered);
   if (plan.confidence) confidence(plan, frame);
   dev.mark(kConfidence);
-  downloadResults(plan, frame, disparity, outputOnDevice, out);
+  downloadResults(plan, outputOnDevice);
   dev.mark(kDownloaded);
   LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(dev.stream));
+  unpackResults(plan, disparity, outputOnDevice, out);
   recordTimings(out.timings);
 }
 
@@ -128,21 +142,24 @@ void CudaMatcher::reserveImages(const FramePlan& plan, FrameImages& f) {
   Device& dev = *device_;
   const int W = plan.width;
   const int H = plan.height;
-  f.support = denseImage<std::uint8_t>(dev.support, W, H);
+  const ReadbackLayout layout(W, H);
+  dev.readback.reserve(layout.bytes);
+  f.support = readbackImage<std::uint8_t>(dev.readback, layout.support, W, H);
+  f.margin = readbackImage<std::uint8_t>(dev.readback, layout.margin, W, H);
+  f.bestCost = readbackImage<std::uint16_t>(dev.readback, layout.bestCost, W, H);
+  f.difference = readbackImage<std::uint8_t>(dev.readback, layout.difference, W, H);
+  f.distance = readbackImage<std::uint8_t>(dev.readback, layout.distance, W, H);
+  f.texture = readbackImage<std::uint8_t>(dev.readback, layout.texture, W, H);
+  f.saturated = readbackImage<std::uint8_t>(dev.readback, layout.saturated, W, H);
+  f.range = readbackImage<std::uint8_t>(dev.readback, layout.range, W, H);
+  f.confidence = readbackImage<std::uint8_t>(dev.readback, layout.confidence, W, H);
+  f.filtered = readbackImage<std::int16_t>(dev.readback, layout.disparity, W, H);
   f.pathCosts = denseVolume(dev.pathCosts, W, H, plan.D, plan.params.paths);
   f.sum = denseVolume(dev.sum, W, H, plan.D);
   f.raw = denseImage<std::int16_t>(dev.rawDisparity, W, H);
   f.best = denseImage<std::int16_t>(dev.bestIndex, W, H);
-  f.margin = denseImage<std::uint8_t>(dev.margin, W, H);
-  f.bestCost = denseImage<std::uint16_t>(dev.bestCost, W, H);
   f.rightIndex = denseImage<std::int16_t>(dev.rightIndex, W, H);
-  f.difference = denseImage<std::uint8_t>(dev.leftRightDifference, W, H);
   f.verticalDistance = denseImage<std::uint8_t>(dev.verticalDistance, W, H);
-  f.distance = denseImage<std::uint8_t>(dev.lidarDistance, W, H);
-  f.texture = denseImage<std::uint8_t>(dev.texture, W, H);
-  f.saturated = denseImage<std::uint8_t>(dev.saturated, W, H);
-  f.range = denseImage<std::uint8_t>(dev.disparityRange, W, H);
-  f.confidence = denseImage<std::uint8_t>(dev.confidence, W, H);
 }
 
 void CudaMatcher::uploadCameras(const FramePlan& plan, const FrameInputs& in, bool inputsOnDevice, FrameImages& f) {
@@ -181,7 +198,7 @@ void CudaMatcher::uploadLidar(const FramePlan& plan, const LidarPoints& lidar, F
   Device& dev = *device_;
   const Parameters& p = plan.params;
   CostSettings& s = f.costs;
-  cuda::uploadLidar(lidar, dev.pixelStart, dev.disparities16, dev.stream);
+  cuda::uploadLidar(lidar, dev.pointPixels, dev.pixelStart, dev.disparities16, dev.stream);
   s.lidar = DeviceLidar{dev.pixelStart.data(), dev.disparities16.data(), plan.width, plan.height};
   if (dev.tableSigma != p.sigma || dev.tableCap != p.lidarCostCap) {
     dev.hostTable = LidarCostTable(p.sigma, p.lidarCostCap);
@@ -276,34 +293,45 @@ void CudaMatcher::confidence(const FramePlan& plan, FrameImages& f) {
                           dev.sigmoid.data(), asConst(f.filtered), f.confidence, stream);
 }
 
-// The disparity, and what the core reads besides it.
-void CudaMatcher::downloadResults(const FramePlan& plan, const FrameImages& f, ImageView<std::int16_t> disparity,
-                                  bool outputOnDevice, FrameResults& out) {
-  cudaStream_t stream = device_->stream;
+// The disparity, and what the core reads besides it: one copy of the read-back allocation into
+// pinned memory (up to the disparity when it stays on the device).
+void CudaMatcher::downloadResults(const FramePlan& plan, bool outputOnDevice) {
+  Device& dev = *device_;
+  const ReadbackLayout layout(plan.width, plan.height);
+  const std::size_t bytes = outputOnDevice ? layout.disparity : layout.bytes;
+  dev.pinned.reserve(bytes);
+  LIDAR_SGM_CUDA_CHECK(
+      cudaMemcpyAsync(dev.pinned.data(), dev.readback.data(), bytes, cudaMemcpyDeviceToHost, dev.stream));
+}
+
+// After the stream is done: the pinned copy into the caller's disparity and the core's images.
+void CudaMatcher::unpackResults(const FramePlan& plan, ImageView<std::int16_t> disparity, bool outputOnDevice,
+                                FrameResults& out) {
+  const std::uint8_t* pinned = device_->pinned.data();
+  const ReadbackLayout layout(plan.width, plan.height);
   const int W = plan.width;
   const int H = plan.height;
-  if (!outputOnDevice) downloadImage(asConst(f.filtered), disparity, stream);
+  if (!outputOnDevice) unpack(pinned, layout.disparity, disparity);
   out.support.resize(W, H);
   if (plan.useLidar) {
-    downloadImage(asConst(f.support), out.support.view(), stream);
+    unpack(pinned, layout.support, out.support.view());
   } else {
     out.support.fill(0);
   }
   if (!plan.confidence) return;
   ConfidenceInputs& in = out.confidenceInputs;
-  const auto download = [&](DeviceImage<std::uint8_t> from, Image<std::uint8_t>& to) {
+  const auto take = [&](std::size_t offset, auto& to) {
     to.resize(W, H);
-    downloadImage(asConst(from), to.view(), stream);
+    unpack(pinned, offset, to.view());
   };
-  download(f.margin, in.margin);
-  in.bestCost.resize(W, H);
-  downloadImage(asConst(f.bestCost), in.bestCost.view(), stream);
-  download(f.difference, in.leftRightDifference);
-  download(f.distance, in.lidarDistance);
-  download(f.texture, in.texture);
-  download(f.saturated, in.saturated);
-  download(f.range, in.disparityRange);
-  download(f.confidence, out.confidence);
+  take(layout.margin, in.margin);
+  take(layout.bestCost, in.bestCost);
+  take(layout.difference, in.leftRightDifference);
+  take(layout.distance, in.lidarDistance);
+  take(layout.texture, in.texture);
+  take(layout.saturated, in.saturated);
+  take(layout.range, in.disparityRange);
+  take(layout.confidence, out.confidence);
 }
 
 // Kernel time per stage (CUDA events). The costs are computed inside the aggregation, so

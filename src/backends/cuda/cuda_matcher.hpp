@@ -41,8 +41,9 @@ class CudaMatcher final : public MatcherBackend {
   void selectDisparity(const FramePlan& plan, FrameImages& frame);
   void leftRightCheck(const FramePlan& plan, FrameImages& frame);
   void confidence(const FramePlan& plan, FrameImages& frame);
-  void downloadResults(const FramePlan& plan, const FrameImages& frame, ImageView<std::int16_t> disparity,
-                       bool outputOnDevice, FrameResults& out);
+  void downloadResults(const FramePlan& plan, bool outputOnDevice);
+  void unpackResults(const FramePlan& plan, ImageView<std::int16_t> disparity, bool outputOnDevice,
+                     FrameResults& out);
   void recordTimings(StageTimings& timings) const;
 
   std::unique_ptr<Device> device_;

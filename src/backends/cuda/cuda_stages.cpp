@@ -81,6 +81,7 @@ void toHost(const DeviceVolumeCopy<T>& device, CostVolume<T>& host) {
 }
 
 struct DeviceLidarCopy {
+  DeviceBuffer<int> pointPixels;
   DeviceBuffer<int> pixelStart;
   DeviceBuffer<int> disparities16;
   DeviceLidar lidar;
@@ -88,7 +89,7 @@ struct DeviceLidarCopy {
 
 DeviceLidarCopy toDevice(const LidarPoints& points) {
   DeviceLidarCopy copy;
-  uploadLidar(points, copy.pixelStart, copy.disparities16, nullptr);
+  uploadLidar(points, copy.pointPixels, copy.pixelStart, copy.disparities16, nullptr);
   copy.lidar = DeviceLidar{copy.pixelStart.data(), copy.disparities16.data(), points.width(), points.height()};
   return copy;
 }
@@ -276,13 +277,30 @@ void leftRightDifference(ImageView<const std::int16_t> bestIndex, ImageView<cons
   toHost(out, difference);
 }
 
-DeviceMemory::DeviceMemory(std::size_t bytes) { LIDAR_SGM_CUDA_CHECK(cudaMalloc(&data_, bytes)); }
+DeviceStream::DeviceStream() {
+  cudaStream_t stream = nullptr;
+  LIDAR_SGM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
+  stream_ = stream;
+}
+DeviceStream::~DeviceStream() { cudaStreamDestroy(static_cast<cudaStream_t>(stream_)); }
+void DeviceStream::synchronize() const {
+  LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(static_cast<cudaStream_t>(stream_)));
+}
+
+DeviceMemory::DeviceMemory(std::size_t bytes) : bytes_(bytes) { LIDAR_SGM_CUDA_CHECK(cudaMalloc(&data_, bytes)); }
 DeviceMemory::~DeviceMemory() { cudaFree(data_); }
 void DeviceMemory::upload(const void* host, std::size_t bytes) {
   LIDAR_SGM_CUDA_CHECK(cudaMemcpy(data_, host, bytes, cudaMemcpyHostToDevice));
 }
 void DeviceMemory::download(void* host, std::size_t bytes) const {
   LIDAR_SGM_CUDA_CHECK(cudaMemcpy(host, data_, bytes, cudaMemcpyDeviceToHost));
+}
+void DeviceMemory::fillAsync(int value, const DeviceStream& stream) {
+  LIDAR_SGM_CUDA_CHECK(cudaMemsetAsync(data_, value, bytes_, static_cast<cudaStream_t>(stream.handle())));
+}
+void DeviceMemory::copyAsync(const DeviceMemory& source, std::size_t bytes, const DeviceStream& stream) {
+  LIDAR_SGM_CUDA_CHECK(cudaMemcpyAsync(data_, source.data(), bytes, cudaMemcpyDeviceToDevice,
+                                       static_cast<cudaStream_t>(stream.handle())));
 }
 
 }  // namespace cuda

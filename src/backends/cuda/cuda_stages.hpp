@@ -44,6 +44,20 @@ void peakRatioMargin(const AggregatedCostVolume& sum, ImageView<const std::int16
 void leftRightDifference(ImageView<const std::int16_t> bestIndex, ImageView<const std::int16_t> rightIndex,
                          int minDisparity, ImageView<std::uint8_t> difference);
 
+/// A non-blocking CUDA stream for tests of DeviceFrame::stream, without CUDA headers in the test.
+class DeviceStream {
+ public:
+  DeviceStream();
+  ~DeviceStream();
+  DeviceStream(const DeviceStream&) = delete;
+  DeviceStream& operator=(const DeviceStream&) = delete;
+  void* handle() const { return stream_; }  ///< the cudaStream_t
+  void synchronize() const;
+
+ private:
+  void* stream_ = nullptr;
+};
+
 /// Device memory for tests of Matcher::computeOnDevice, without CUDA headers in the test.
 class DeviceMemory {
  public:
@@ -52,11 +66,17 @@ class DeviceMemory {
   DeviceMemory(const DeviceMemory&) = delete;
   DeviceMemory& operator=(const DeviceMemory&) = delete;
   void* data() const { return data_; }
+  std::size_t size() const { return bytes_; }
   void upload(const void* host, std::size_t bytes);
   void download(void* host, std::size_t bytes) const;
+  /// Queued on `stream`: every byte set to `value`.
+  void fillAsync(int value, const DeviceStream& stream);
+  /// Queued on `stream`: the first `bytes` of `source` copied here.
+  void copyAsync(const DeviceMemory& source, std::size_t bytes, const DeviceStream& stream);
 
  private:
   void* data_ = nullptr;
+  std::size_t bytes_ = 0;
 };
 
 }  // namespace cuda

@@ -20,6 +20,9 @@ void censusTransform(DeviceImage<const std::uint8_t> image, CensusType type, Dev
 void censusTransform(DeviceImage<const std::uint16_t> image, CensusType type, DeviceImage<std::uint64_t> census,
                      cudaStream_t stream);
 
+// lidar_cost.cu: pixelStart[p] (p = 0 .. pixels) = the first of the `count` points (sorted by
+// pixel, LidarPoints::pointPixels) whose pixel is >= p: LidarPoints' compressed rows.
+void lidarPixelStarts(const int* pointPixels, int count, int pixels, int* pixelStart, cudaStream_t stream);
 // lidar_cost.cu: 1 where a point lies in the pixel's 3x3 neighbourhood (C_L has information).
 void lidarSupport(DeviceLidar lidar, DeviceImage<std::uint8_t> support, cudaStream_t stream);
 /// 1 where a point lies within +-1 column and +-rows rows (the left-right check spares it).

@@ -9,6 +9,23 @@ namespace lidar_sgm {
 namespace cuda {
 namespace {
 
+// A binary search per pixel: no scan, no atomics, so the offsets are the host's exactly.
+__global__ void pixelStartKernel(const int* pointPixels, int count, int pixels, int* pixelStart) {
+  const int p = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
+  if (p > pixels) return;
+  int lo = 0;
+  int hi = count;
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    if (__ldg(pointPixels + mid) < p) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  pixelStart[p] = lo;
+}
+
 __global__ void supportKernel(DeviceLidar lidar, DeviceImage<std::uint8_t> support) {
   const int x = static_cast<int>(blockIdx.x * blockDim.x + threadIdx.x);
   const int y = static_cast<int>(blockIdx.y * blockDim.y + threadIdx.y);
@@ -31,6 +48,13 @@ __global__ void coverageKernel(DeviceLidar lidar, int rows, DeviceImage<std::uin
 }
 
 }  // namespace
+
+void lidarPixelStarts(const int* pointPixels, int count, int pixels, int* pixelStart, cudaStream_t stream) {
+  const int threads = 256;
+  const int blocks = (pixels + 1 + threads - 1) / threads;
+  pixelStartKernel<<<blocks, threads, 0, stream>>>(pointPixels, count, pixels, pixelStart);
+  LIDAR_SGM_CUDA_CHECK_LAUNCH("pixelStartKernel");
+}
 
 void lidarSupport(DeviceLidar lidar, DeviceImage<std::uint8_t> support, cudaStream_t stream) {
   supportKernel<<<pixelGrid(lidar.width, lidar.height), pixelBlock(), 0, stream>>>(lidar, support);

@@ -12,6 +12,7 @@
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/cuda_matcher.hpp"
 #include "backends/cuda/device_buffer.hpp"
+#include "backends/cuda/readback.hpp"
 #include "backends/cuda/transfers.hpp"
 #include "lidar_sgm/core/confidence.hpp"
 
@@ -36,33 +37,29 @@ enum Mark {
 struct CudaMatcher::Device {
   cudaStream_t stream = nullptr;
   std::array<cudaEvent_t, kMarks> events{};
+  // Recorded on the caller's stream of a device frame; `stream` waits for it (DeviceFrame::stream).
+  cudaEvent_t callerInputs = nullptr;
 
   DeviceBuffer<std::uint8_t> images8[3];    // left, right, up (8-bit frames)
   DeviceBuffer<std::uint16_t> images16[3];  // ... (16-bit frames)
   DeviceBuffer<std::uint64_t> census[3];
+  DeviceBuffer<int> pointPixels;  // LidarPoints::pointPixels(), from which pixelStart is built
   DeviceBuffer<int> pixelStart;
   DeviceBuffer<int> disparities16;
   DeviceBuffer<std::uint8_t> table;
   DeviceBuffer<std::uint16_t> weights;  // adaptive alpha only
-  DeviceBuffer<std::uint8_t> support;
   DeviceBuffer<std::uint8_t> coverage;
   DeviceBuffer<std::uint16_t> pathCosts;  // one L_r volume per path
   DeviceBuffer<std::uint16_t> sum;
   DeviceBuffer<std::int16_t> rawDisparity;
   DeviceBuffer<std::int16_t> bestIndex;
   DeviceBuffer<std::int16_t> rightIndex;
-  DeviceBuffer<std::int16_t> disparity;
-  DeviceBuffer<std::uint8_t> margin;
-  DeviceBuffer<std::uint16_t> bestCost;
-  DeviceBuffer<std::uint8_t> leftRightDifference;
   // The confidence's core part (confidence.cu) and its logistic table.
   DeviceBuffer<std::uint8_t> verticalDistance;
-  DeviceBuffer<std::uint8_t> lidarDistance;
-  DeviceBuffer<std::uint8_t> texture;
-  DeviceBuffer<std::uint8_t> saturated;
-  DeviceBuffer<std::uint8_t> disparityRange;
-  DeviceBuffer<std::uint8_t> confidence;
   DeviceBuffer<std::uint8_t> sigmoid;
+  // The disparity, support, confidence and its inputs: one allocation, one copy back (readback.hpp).
+  DeviceBuffer<std::uint8_t> readback;
+  PinnedBuffer pinned;
   LidarCostTable hostTable;
   float tableSigma = 0;
   int tableCap = -1;
@@ -71,6 +68,8 @@ struct CudaMatcher::Device {
   Device() {
     LIDAR_SGM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
     for (cudaEvent_t& e : events) LIDAR_SGM_CUDA_CHECK(cudaEventCreate(&e));
+    // No timing: the cheapest event to record and wait for.
+    LIDAR_SGM_CUDA_CHECK(cudaEventCreateWithFlags(&callerInputs, cudaEventDisableTiming));
     // The core's logistic curve, entry i at logit (i - 1024) / 64 (confidenceFromLogit256).
     std::vector<std::uint8_t> curve(2048);
     for (int i = 0; i < 2048; ++i) curve[static_cast<std::size_t>(i)] = confidenceFromLogit256(4 * (i - 1024));
@@ -81,6 +80,7 @@ struct CudaMatcher::Device {
     for (cudaEvent_t e : events) {
       if (e != nullptr) cudaEventDestroy(e);
     }
+    if (callerInputs != nullptr) cudaEventDestroy(callerInputs);
     if (stream != nullptr) cudaStreamDestroy(stream);
   }
   Device(const Device&) = delete;

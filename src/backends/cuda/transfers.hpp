@@ -10,6 +10,7 @@
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/device_buffer.hpp"
 #include "backends/cuda/device_types.hpp"
+#include "backends/cuda/kernels.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
 
@@ -47,11 +48,15 @@ void uploadVector(const std::vector<T>& host, DeviceBuffer<T>& buffer, cudaStrea
       cudaMemcpyAsync(buffer.data(), host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice, stream));
 }
 
-/// LidarPoints' compressed rows as they are: the per-pixel offsets and the disparities.
-inline void uploadLidar(const LidarPoints& lidar, DeviceBuffer<int>& pixelStart, DeviceBuffer<int>& disparities16,
-                        cudaStream_t stream) {
-  uploadVector(lidar.pixelStarts(), pixelStart, stream);
+/// LidarPoints' compressed rows: the points' pixels and disparities go up (8 bytes a point), the
+/// per-pixel offsets (4 bytes a pixel: 1.9 MB for a KITTI frame) are rebuilt from them on the device.
+inline void uploadLidar(const LidarPoints& lidar, DeviceBuffer<int>& pointPixels, DeviceBuffer<int>& pixelStart,
+                        DeviceBuffer<int>& disparities16, cudaStream_t stream) {
+  uploadVector(lidar.pointPixels(), pointPixels, stream);
   uploadVector(lidar.disparities16(), disparities16, stream);
+  const int pixels = lidar.width() * lidar.height();
+  pixelStart.reserve(static_cast<std::size_t>(pixels) + 1);
+  lidarPixelStarts(pointPixels.data(), static_cast<int>(lidar.size()), pixels, pixelStart.data(), stream);
 }
 
 }  // namespace cuda
