@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cloud_score.hpp"
 #include "common/arguments.hpp"
 #include "common/config_arguments.hpp"
 #include "common/help_layout.hpp"
@@ -16,6 +17,7 @@
 #include "common/timer.hpp"
 #include "common/tool_main.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
+#include "lidar_sgm/eval/cloud_distance_report.hpp"
 #include "lidar_sgm/eval/confidence_fit.hpp"
 #include "lidar_sgm/eval/confidence_report.hpp"
 #include "lidar_sgm/eval/group_run.hpp"
@@ -32,14 +34,16 @@ using namespace lidar_sgm::eval;
 namespace {
 
 void printHelp(const char* program) {
-  char usage[700];
+  char usage[900];
   std::snprintf(usage, sizeof(usage),
                 "Syntax is: %s -out DIR [options]\n"
+                "       or: %s -cloud CLOUD -reference REFERENCE [-tau T] [-bands E,E,...] [-out DIR]\n"
                 "Runs the evaluation protocols of docs/EVALUATION.md (P1: KITTI 2015 with simulated LiDAR, P2: real\n"
                 "KITTI LiDAR, KITTI142: the paper's own, P3: synthetic frames) and writes tables, plots, pictures\n"
                 "and JSON. The whole plan\n"
-                "takes minutes (BENCHMARK.md); it is printed before anything runs.\n",
-                program);
+                "takes minutes (BENCHMARK.md); it is printed before anything runs. With -cloud, it scores one\n"
+                "cloud against a reference cloud in 3D instead (below).\n",
+                program, program);
   const std::string inputs =
       "  -data ROOT         third-party data root (default: $LIDAR_SGM_DATA, else ../shared/data, relative to\n"
       "                     the working directory)\n"
@@ -79,10 +83,14 @@ void printHelp(const char* program) {
        "-alpha_step 0.5 -no_pictures"},
       {"P1 at half scale (the paper's fast mode), on the KITTI 2015 frames in ../shared/data:",
        "lidar_sgm_eval -out out/p1_half -protocols P1 -scale 0.5"},
+      {"A cloud against a reference in 3D (lidar_sgm_densify's first example's against the sample's scan), "
+       "at 10 and 20 cm:",
+       "lidar_sgm_eval -cloud dense.pcd -reference data/sample/velodyne/000000.bin -tau 0.1,0.2 -out out/score"},
   };
   const std::string text = apps::helpText(usage,
                                           {{"Inputs", inputs},
                                            {"Outputs", outputs},
+                                           {"A cloud against a reference cloud", apps::cloudScoreHelp()},
                                            {"Method", method},
                                            {"Speed", speed},
                                            {"Filters", filters}},
@@ -170,10 +178,13 @@ void printPlan(const GroupSelection& selection, const std::string& out, const Gr
 int run(int argc, char** argv) {
   const apps::Arguments args(
       argc, argv,
-      apps::joined(apps::configValueOptions(OptionScope::Disparity),
-                   {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step", "kitti142_frames"}),
+      apps::joined(apps::joined(apps::configValueOptions(OptionScope::Disparity),
+                                {"data", "out", "protocols", "synth_frames", "synth_size", "p3_sets", "alpha_step",
+                                 "kitti142_frames"}),
+                   apps::cloudScoreOptions()),
       apps::joined(apps::configFlagOptions(OptionScope::Disparity), {"no_pictures", "fit_confidence"}));
   if (apps::answerHelpOrVersion(args, "lidar_sgm_eval", [&] { printHelp(argv[0]); })) return 0;
+  if (args.has("cloud") || args.has("reference")) return apps::runCloudScore(args);
   if (!args.positionals().empty()) {
     throw std::invalid_argument("unexpected argument '" + args.positionals().front() + "' (see -h)");
   }
@@ -247,7 +258,7 @@ int run(int argc, char** argv) {
     results.push_back(runGroup(g, runOptions));
     writeAlphaSweepPlot(results.back(), out + "/plots/alpha_sweep_" + slug(g.name) + ".png");
     // The paper's tables first where the group has them (KITTI142), on the terminal too.
-    const std::string paperTables = paperTablesMarkdown(results.back());
+    const std::string paperTables = paperTablesMarkdown(results.back()) + groundTruthCloudMarkdown(results.back());
     if (!paperTables.empty()) std::printf("%s\n", paperTables.c_str());
     markdown += "\n## " + g.name + "\n\n" + g.description + ". Plot: `plots/alpha_sweep_" + slug(g.name) +
                 ".png`.\n" + paperTables + "\n" + markdownTable(results.back());

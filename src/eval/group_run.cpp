@@ -13,6 +13,7 @@
 
 #include "frame_pictures.hpp"
 #include "lidar_sgm/eval/alpha_sweep.hpp"
+#include "lidar_sgm/eval/ground_truth_cloud.hpp"
 
 namespace lidar_sgm {
 namespace eval {
@@ -28,8 +29,10 @@ struct FrameRun {
 
 /// Every metric of one method's output on one frame.
 /// With `curves`, also the confidence curves, from the output's disparity before the minimum
-/// confidence dropped any pixel (MethodOutput::allDisparity): without a new run.
-MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput& out, bool curves) {
+/// confidence dropped any pixel (MethodOutput::allDisparity): without a new run. With
+/// `groundTruthCloud`, also the 3D score of the output's cloud.
+MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput& out, bool curves,
+                   const GroundTruthCloud* groundTruthCloud) {
   const Image<std::int16_t>& d = out.disparity;
   MethodResult result;
   result.method = method;
@@ -44,6 +47,7 @@ MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput&
   result.depth = evaluateDepth(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
   if (!f.objectMap.empty()) result.objectSplit = evaluateObjectSplit(d.view(), f.groundTruth.view(), f.objectMap.view());
   if (!f.inputPixels.empty()) result.uncovered = evaluateDisparity(d.view(), f.groundTruth.view(), f.inputPixels.view());
+  if (groundTruthCloud) result.cloud3d = groundTruthCloud->score(d.view());
   if (curves && !out.confidence.empty()) {
     result.confidence = confidenceCurves(out.allDisparity.view(), out.confidence.view(), f.groundTruth.view(),
                                          f.exclude.view(), f.focalBaseline, scoring);
@@ -56,10 +60,14 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
   FrameRun run;
   run.result.dataset = frame.dataset;
   run.result.frame = frame.name;
+  // The GT's cloud and its kd-tree, once for every method of the frame.
+  const std::optional<GroundTruthCloud> groundTruthCloud =
+      frame.calibration ? std::optional<GroundTruthCloud>(std::in_place, frame) : std::nullopt;
+  const GroundTruthCloud* cloud3d = groundTruthCloud ? &*groundTruthCloud : nullptr;
   for (const Method& m : methods) {
     MethodOutput out =
         runMethod(m, frame, config, options.fixedNumDisparities);
-    run.result.methods.push_back(score(m, frame, out, true));
+    run.result.methods.push_back(score(m, frame, out, true, cloud3d));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
@@ -67,8 +75,9 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
     MethodOutput out =
         runMethod(fused, frame, config, options.fixedNumDisparities);
     const bool paperAlpha = std::abs(alpha - kPaperAlpha) < 1e-9;
-    // Only the table's entry is judged: the curves at every alpha would cost a second sweep.
-    run.sweep.push_back(score(fused, frame, out, paperAlpha));
+    // Only the table's entry is judged and scored in 3D: at every alpha, the curves would cost a
+    // second sweep and the 3D score (a kd-tree per cloud) as much as the matching.
+    run.sweep.push_back(score(fused, frame, out, paperAlpha, paperAlpha ? cloud3d : nullptr));
     if (paperAlpha) {
       run.fusedRange = out.range.describe();
       run.result.methods.push_back(run.sweep.back());

@@ -60,6 +60,7 @@ EvalFrame loadFrame(const fs::path& root, const std::string& id, const geometry:
                              std::to_string(calibration.height) + " as the calibration");
   }
   frame.focalBaseline = calibration.focalBaseline();
+  frame.calibration = calibration;  // the methods' clouds are scored in 3D against the GT's
   // The input: the whole raw scan, projected as the tools project it (default options, occlusion
   // filter on).
   const std::vector<Eigen::Vector3f> points = toPoints(io::readKittiBin((root / "velodyne" / (id + ".bin")).string()));

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lidar_sgm/eval/cloud_distance_report.hpp"
 #include "report_cloud.hpp"
 
 namespace lidar_sgm {
@@ -87,6 +88,7 @@ nlohmann::json methodJson(const MethodResult& method) {
                              {"density", o.density},       {"gt_pixels", o.gtPixels}, {"foreground_pixels", o.foregroundPixels}};
   }
   if (method.uncovered) entry["uncovered"] = metricsJson(*method.uncovered);
+  if (method.cloud3d) entry["cloud_3d"] = cloudDistanceJson(*method.cloud3d);
   if (method.numDisparities > 0) {
     entry["disparity_range"] = {
         {"min", method.minDisparity}, {"num", method.numDisparities}, {"from_lidar", method.rangeFromLidar}};
@@ -168,6 +170,7 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
   std::vector<std::vector<double>> milliseconds;
   std::vector<std::vector<ObjectSplitMetrics>> splits;
   std::vector<std::vector<DisparityMetrics>> uncovered;
+  std::vector<std::vector<CloudDistanceScore>> clouds3d;
   for (const FrameResult& frame : result.frames) {
     for (const MethodResult& method : frame.methods) {
       // The best alpha may differ between groups but is one per group: matched by role alone.
@@ -183,9 +186,11 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
         milliseconds.emplace_back();
         splits.emplace_back();
         uncovered.emplace_back();
+        clouds3d.emplace_back();
       }
       if (method.objectSplit) splits[index].push_back(*method.objectSplit);
       if (method.uncovered) uncovered[index].push_back(*method.uncovered);
+      if (method.cloud3d) clouds3d[index].push_back(*method.cloud3d);
       metrics[index].push_back(method.metrics);
       clouds[index].push_back(method.cloud);
       depths[index].push_back(method.depth);
@@ -200,8 +205,10 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
     entries[i].numDisparities = 0;  // a range per frame, not a median
     entries[i].objectSplit.reset();
     entries[i].uncovered.reset();
+    entries[i].cloud3d.reset();
     if (!splits[i].empty()) entries[i].objectSplit = meanObjectSplit(splits[i]);
     if (!uncovered[i].empty()) entries[i].uncovered = medianOver(uncovered[i]);
+    if (!clouds3d[i].empty()) entries[i].cloud3d = medianCloudDistance(clouds3d[i]);
   }
   return entries;
 }

@@ -7,21 +7,28 @@
 namespace lidar_sgm {
 namespace geometry {
 
-DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCalibration& calibration,
-                     const ReprojectionOptions& options) {
+namespace {
+
+template <typename T>
+void checkInputs(ImageView<const T> disparity, const StereoCalibration& calibration,
+                 const ReprojectionOptions& options) {
   calibration.validate();
-  if (disparity16.width != calibration.width || disparity16.height != calibration.height) {
-    throw std::invalid_argument("reproject: the disparity image is " + std::to_string(disparity16.width) + "x" +
-                                std::to_string(disparity16.height) + " but the calibration is " +
+  if (disparity.width != calibration.width || disparity.height != calibration.height) {
+    throw std::invalid_argument("reproject: the disparity image is " + std::to_string(disparity.width) + "x" +
+                                std::to_string(disparity.height) + " but the calibration is " +
                                 std::to_string(calibration.width) + "x" + std::to_string(calibration.height));
   }
   if (options.stride < 1) throw std::invalid_argument("reproject: stride must be >= 1");
   if (!(options.maxDepth > 0.0)) throw std::invalid_argument("reproject: maxDepth must be positive [m]");
+}
 
+/// The cloud of a depth per pixel: `depthAt(x, y)` is z [m], 0 where the pixel has none.
+template <typename DepthAt>
+DenseCloud reprojectDepths(const StereoCalibration& calibration, const ReprojectionOptions& options,
+                           DepthAt depthAt) {
   // One transform for the whole image: camera -> output frame.
   const Eigen::Isometry3d T_out_cam =
       options.frame == OutputFrame::Lidar ? calibration.T_lidar_cam() : Eigen::Isometry3d::Identity();
-  const double fb = calibration.focalBaseline();
   const float nan = std::numeric_limits<float>::quiet_NaN();
 
   DenseCloud cloud;
@@ -33,10 +40,8 @@ DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCali
   cloud.pixels.reserve(cloud.points.capacity());
   for (int y = 0; y < calibration.height; y += options.stride) {
     for (int x = 0; x < calibration.width; x += options.stride) {
-      const int d16 = disparity16(x, y);
-      // Eq. 3 backwards: z = f*b/d; invalid, non-positive and too-far disparities give no point.
-      const double z = d16 > 0 ? fb * kDisparityScale / d16 : std::numeric_limits<double>::infinity();
-      if (d16 == kInvalidDisparity || d16 <= 0 || z > options.maxDepth) {
+      const double z = depthAt(x, y);
+      if (!(z > 0.0) || z > options.maxDepth) {
         if (options.keepOrganized) {
           cloud.points.emplace_back(nan, nan, nan);
           cloud.pixels.push_back({x, y});
@@ -58,6 +63,29 @@ DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCali
     cloud.height = 1;
   }
   return cloud;
+}
+
+}  // namespace
+
+DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCalibration& calibration,
+                     const ReprojectionOptions& options) {
+  checkInputs(disparity16, calibration, options);
+  const double fb = calibration.focalBaseline();
+  return reprojectDepths(calibration, options, [&](int x, int y) {
+    // Eq. 3 backwards: z = f*b/d; invalid and non-positive disparities give no point.
+    const int d16 = disparity16(x, y);
+    return d16 > 0 ? fb * kDisparityScale / d16 : 0.0;
+  });
+}
+
+DenseCloud reproject(ImageView<const float> disparity, const StereoCalibration& calibration,
+                     const ReprojectionOptions& options) {
+  checkInputs(disparity, calibration, options);
+  const double fb = calibration.focalBaseline();
+  return reprojectDepths(calibration, options, [&](int x, int y) {
+    const float d = disparity(x, y);  // NaN fails the test too
+    return d > 0.0f ? fb / static_cast<double>(d) : 0.0;
+  });
 }
 
 void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth,

@@ -10,12 +10,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "lidar_sgm/eval/ground_truth_cloud.hpp"
 #include "lidar_sgm/eval/methods.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
 #include "lidar_sgm/eval/protocols.hpp"
@@ -122,7 +124,8 @@ TEST_F(EvalCli, Kitti142PrintsThePapersTablesAndItsFiguresAreTheDensifiers) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   // Both tables on the terminal, ours beside the paper's rows.
   for (const char* text : {"The paper's Table I", "The paper's Table II", "| paper: LiDAR-SGM (alpha 0.7) | 2.06 | 14.47",
-                           "| LiDAR-SGM (alpha 0.7) |", "| IP-Basic (morphological) |", "where no input point is"}) {
+                           "| LiDAR-SGM (alpha 0.7) |", "| IP-Basic (morphological) |", "where no input point is",
+                           "3D: each method's cloud against the GT's cloud", "| F 40-80 m |"}) {
     EXPECT_NE(r.output.find(text), std::string::npos) << text << " in\n" << r.output;
   }
   std::ifstream jsonFile(dir_ / "results.json");
@@ -158,6 +161,16 @@ TEST_F(EvalCli, Kitti142PrintsThePapersTablesAndItsFiguresAreTheDensifiers) {
     EXPECT_DOUBLE_EQ(m.at("object_split").at("foreground").get<double>(), split.foreground);
     EXPECT_DOUBLE_EQ(m.at("object_split").at("total").get<double>(), split.total);
     EXPECT_DOUBLE_EQ(m.at("object_split").at("density").get<double>(), split.density);
+    // The cloud against the GT's cloud in 3D, as scored here directly.
+    const std::optional<eval::CloudDistanceScore> cloud = eval::GroundTruthCloud(f).score(densifier.disparity().view());
+    ASSERT_TRUE(cloud.has_value());
+    const nlohmann::json& overall = m.at("cloud_3d").at("overall");
+    EXPECT_EQ(overall.at("points").get<long>(), cloud->overall.points);
+    EXPECT_EQ(overall.at("reference_points").get<long>(), cloud->overall.referencePoints);
+    for (std::size_t t = 0; t < cloud->overall.scores.size(); ++t) {
+      EXPECT_DOUBLE_EQ(overall.at("taus").at(t).at("f_score").get<double>(), cloud->overall.scores[t].fScore);
+    }
+    EXPECT_EQ(m.at("cloud_3d").at("bands").size(), 4u);
   }
   EXPECT_TRUE(found) << frame.dump(2);
 }

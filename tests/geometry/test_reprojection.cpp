@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -133,6 +134,48 @@ TEST(Reprojection, MaxDepthCutsFarPixels) {
   EXPECT_EQ(lidar_sgm::geometry::reproject(disparity.view(), c, o).size(), 1u);
   o.maxDepth = std::numeric_limits<double>::infinity();
   EXPECT_EQ(lidar_sgm::geometry::reproject(disparity.view(), c, o).size(), 3u);
+}
+
+// A ground truth read from KITTI's 1/256 px files goes in as float, unrounded: where its
+// disparity is a multiple of 1/16 px, exactly the points of the x16 image; <= 0 and NaN give none.
+TEST(Reprojection, FloatDisparityGivesTheSamePointsAsItsX16Image) {
+  const StereoCalibration c = smallRig();
+  Image<std::int16_t> disparity16(c.width, c.height, kInvalidDisparity);
+  Image<float> disparity(c.width, c.height, 0.0f);
+  for (int y = 0; y < c.height; y += 3) {
+    for (int x = 0; x < c.width; x += 2) {
+      disparity16(x, y) = static_cast<std::int16_t>(16 + (x * 7 + y * 13) % 300);
+      disparity(x, y) = disparity16(x, y) / 16.0f;
+    }
+  }
+  disparity(1, 1) = std::numeric_limits<float>::quiet_NaN();
+  disparity(3, 1) = -2.0f;
+  for (OutputFrame frame : {OutputFrame::Lidar, OutputFrame::Camera}) {
+    ReprojectionOptions o;
+    o.frame = frame;
+    const DenseCloud expected = lidar_sgm::geometry::reproject(disparity16.view(), c, o);
+    const DenseCloud cloud = lidar_sgm::geometry::reproject(disparity.view(), c, o);
+    ASSERT_EQ(cloud.size(), expected.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      EXPECT_EQ(cloud.points[i], expected.points[i]) << i;
+      EXPECT_EQ(cloud.pixels[i].x, expected.pixels[i].x);
+      EXPECT_EQ(cloud.pixels[i].y, expected.pixels[i].y);
+    }
+  }
+  // A sub-x16 disparity is kept as it is: 12.3 px -> z = 50 / 12.3 m at the principal point.
+  disparity(50, 30) = 12.3f;
+  ReprojectionOptions camera;
+  camera.frame = OutputFrame::Camera;
+  const DenseCloud cloud = lidar_sgm::geometry::reproject(disparity.view(), c, camera);
+  bool found = false;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (cloud.pixels[i].x != 50 || cloud.pixels[i].y != 30) continue;
+    found = true;
+    EXPECT_FLOAT_EQ(cloud.points[i].z(), static_cast<float>(50.0 / static_cast<double>(12.3f)));
+  }
+  EXPECT_TRUE(found);
+  Image<float> wrong(c.width, c.height + 1, 1.0f);
+  EXPECT_THROW(lidar_sgm::geometry::reproject(wrong.view(), c), std::invalid_argument);
 }
 
 TEST(Reprojection, RejectsMismatchedSizesAndBadOptions) {

@@ -2,12 +2,14 @@
 // One frame of an evaluation protocol: what every method gets, and what it is scored against.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <opencv2/core.hpp>
 
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
+#include "lidar_sgm/geometry/calibration.hpp"
 
 namespace lidar_sgm {
 namespace eval {
@@ -35,6 +37,9 @@ struct EvalFrame {
   /// "correct" is then also given on the GT pixels no input point covers. Empty otherwise.
   Image<std::uint8_t> inputPixels;
   double focalBaseline = 0.0;       ///< f*b [px*m], for depth <-> disparity (IP-Basic works on depth)
+  /// The rectified rig, where the protocol scores the methods' clouds in 3D against the GT's
+  /// cloud (KITTI142, ground_truth_cloud.hpp); empty otherwise.
+  std::optional<geometry::StereoCalibration> calibration;
   int numDisparities = 128;         ///< search range for this frame (multiple of 16)
 };
 

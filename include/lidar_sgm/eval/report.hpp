@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lidar_sgm/eval/cloud_distance.hpp"
 #include "lidar_sgm/eval/cloud_metrics.hpp"
 #include "lidar_sgm/eval/confidence_curves.hpp"
 #include "lidar_sgm/eval/methods.hpp"
@@ -41,6 +42,10 @@ struct MethodResult {
   /// Frames that score their input pixels too (KITTI142): the metrics on the GT pixels that no
   /// input point covers, where the GT cannot favour a method for having been given the answer.
   std::optional<DisparityMetrics> uncovered{};
+  /// Frames with a calibration (KITTI142): the output's cloud against the GT's cloud in 3D
+  /// (ground_truth_cloud.hpp), for the table's methods; not for the sweep's other alphas. For
+  /// the medians, medianCloudDistance over the frames.
+  std::optional<CloudDistanceScore> cloud3d{};
 };
 
 /// Same method and the same role (sweep best or not): what the medians are grouped by.
@@ -114,7 +119,7 @@ std::string paperTablesMarkdown(const ProtocolResult& result);
 /// "estimated_pixels","ms",["disparity_range":{"min","num","from_lidar"},]"cloud":{"points","gt_pixels","tau_3":{"precision","completeness",
 /// "f_score"},"tau_5":{...}},"depth":{"rmse_mm","mae_mm","irmse_per_km","imae_per_km","density",
 /// "gt_pixels","estimated_pixels"}[,"object_split":{"background","foreground","total","density",
-/// "gt_pixels","foreground_pixels"}][,"uncovered":{the disparity metrics}]}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
+/// "gt_pixels","foreground_pixels"}][,"uncovered":{the disparity metrics}][,"cloud_3d":{cloudDistanceJson}]}]}],"medians":[{... same fields}],"sweeps":{method id:[{"alpha",
 /// "correct","rmse",...}]}}]} (the sweeps hold the disparity metrics only).
 nlohmann::json toJson(const std::vector<ProtocolResult>& results);
 

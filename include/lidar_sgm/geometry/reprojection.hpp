@@ -50,6 +50,10 @@ struct DenseCloud {
 /// the calibration's, or stride < 1 / maxDepth <= 0.
 DenseCloud reproject(ImageView<const std::int16_t> disparity16, const StereoCalibration& calibration,
                      const ReprojectionOptions& options = {});
+/// The same for a disparity in pixels as float (a ground truth read from KITTI's 1/256 px files,
+/// without rounding it to x16): z = f*b/d; <= 0 or NaN gives no point.
+DenseCloud reproject(ImageView<const float> disparity, const StereoCalibration& calibration,
+                     const ReprojectionOptions& options = {});
 
 /// The dense depth image of `disparity16` (x16, kInvalidDisparity): z = f*b/d [m] (Eq. 3) per
 /// pixel, the same z as reproject()'s points; 0 where there is no positive disparity or z
