@@ -3,7 +3,9 @@
 // By default the KITTI 2015 pair 000000_10 with the GT-sampled 64-beam LiDAR of protocol P1;
 // -left/-right/-lidar for other files; -synthetic for the built-in frame (the only input when
 // the bench is built without lidar_sgm::io); -frame_dir for a frame saved as PGM files (which
-// -export_frame writes), the real frame on a machine without OpenCV. Prints a settings block,
+// -export_frame writes), the real frame on a machine without OpenCV; -kitti_frame for a KITTI 2015
+// frame with its raw scan, timed whole as the tools run it (Densifier::run with their defaults:
+// configurations densifier and densifier_half) in pairs with OpenCV's SGBM. Prints a settings block,
 // the median of -runs frames after -warmups frames per configuration as a markdown table for
 // BENCHMARK.md and one "result ..." line each for scripts, the peak memory of the fused frame,
 // OpenCV's SGBM on the same pair, and with -growth the cost per W*H*D.
@@ -29,6 +31,8 @@
 
 #ifdef LIDAR_SGM_BENCH_HAVE_IO
 #include "bench_frame_io.hpp"
+#include "bench_whole_frame.hpp"
+#include "lidar_sgm/pipeline/densifier.hpp"
 #endif
 #ifdef LIDAR_SGM_BENCH_HAVE_OPENCV
 #include "bench_opencv_sgbm.hpp"
@@ -57,6 +61,7 @@ struct Options {
   std::string dataRoot;  ///< empty: $LIDAR_SGM_DATA, else the ../shared/data found at configure time
   std::string left, right, lidar;
   std::string frameDir;     ///< a frame saved as PGM files (pgm_frame.hpp)
+  std::string kittiFrame;   ///< a KITTI 2015 frame with its raw scan (bench_whole_frame.hpp)
   std::string exportFrame;  ///< write the frame there as PGM files instead of timing it
   bool growth = false;
 };
@@ -70,6 +75,10 @@ void printUsage(const char* program) {
       "  -frame_dir DIR          DIR/left.pgm, right.pgm (8-bit P5), lidar16.pgm (16-bit P5, x16\n"
       "                          disparity, 0 = no point), as -export_frame writes them; needs no OpenCV\n"
       "  -synthetic [-width 1242 -height 375]   the built-in synthetic frame\n"
+      "  -kitti_frame ID         KITTI 2015 training frame ID (e.g. 000007) of ROOT/kitti2015_lidar with its\n"
+      "                          raw Velodyne scan; the whole frame as the tools run it (configurations\n"
+      "                          densifier, densifier_half: the default with this input), the others on its\n"
+      "                          pair and projected scan\n"
       "options:\n"
       "  -export_frame DIR       write the input frame to DIR as -frame_dir reads it, check that it\n"
       "                          reads back identical, and time nothing\n"
@@ -77,7 +86,8 @@ void printUsage(const char* program) {
       "  -threads N              worker threads, 0 = hardware threads (default 0)\n"
       "  -runs N                 timed frames per configuration, median reported (default 20)\n"
       "  -warmups N              untimed frames before them (default %d)\n"
-      "  -configs LIST           comma list of fused,stereo,lidar,paths8,half (default all)\n"
+      "  -configs LIST           comma list of fused,stereo,lidar,paths8,half, and with -kitti_frame\n"
+      "                          densifier,densifier_half (default: all, or with -kitti_frame those two)\n"
       "  -num_disparities N      (default 128)\n"
       "  -paths 4|8              SGM paths of every configuration but paths8 (default 4)\n"
       "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n"
@@ -101,7 +111,7 @@ std::vector<std::string> splitCommas(const std::string& list) {
 apps::Arguments parseArguments(int argc, char** argv) {
   return apps::Arguments(argc, argv,
                          {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
-                          "height", "data", "left", "right", "lidar", "frame_dir", "export_frame"},
+                          "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame"},
                          {"synthetic", "growth"});
 }
 
@@ -125,6 +135,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.lidar = args.text("lidar", o.lidar);
   o.frameDir = args.text("frame_dir", o.frameDir);
   o.exportFrame = args.text("export_frame", o.exportFrame);
+  o.kittiFrame = args.text("kitti_frame", o.kittiFrame);
   o.synthetic = args.has("synthetic");
   o.growth = args.has("growth");
   if (o.runs < 1) throw std::invalid_argument("-runs must be at least 1");
@@ -132,8 +143,10 @@ Options optionsFrom(const apps::Arguments& args) {
   if (o.width < 16 || o.height < 16) throw std::invalid_argument("-width and -height must be at least 16");
   const int filesGiven = !o.left.empty() + !o.right.empty() + !o.lidar.empty();
   if (filesGiven != 0 && filesGiven != 3) throw std::invalid_argument("-left, -right and -lidar go together");
-  const int inputsGiven = (filesGiven == 3) + o.synthetic + !o.frameDir.empty();
-  if (inputsGiven > 1) throw std::invalid_argument("-synthetic, -left/-right/-lidar and -frame_dir exclude each other");
+  const int inputsGiven = (filesGiven == 3) + o.synthetic + !o.frameDir.empty() + !o.kittiFrame.empty();
+  if (inputsGiven > 1) {
+    throw std::invalid_argument("-synthetic, -left/-right/-lidar, -frame_dir and -kitti_frame exclude each other");
+  }
   return o;
 }
 
@@ -143,6 +156,22 @@ std::string dataRoot(const Options& o) {
   if (!o.dataRoot.empty()) return o.dataRoot;
   if (const char* env = std::getenv("LIDAR_SGM_DATA")) return env;
   return LIDAR_SGM_SHARED_DATA;
+}
+#endif
+
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+/// The pair of a whole frame with its scan projected as the tools project it, for the
+/// configurations that time the matcher's part.
+Frame projectedFrame(const WholeFrame& whole) {
+  Densifier densifier;
+  densifier.setCalibration(whole.calibration);
+  densifier.setStereoPair(whole.pair.left.view(), whole.pair.right.view());
+  densifier.setComputeCloud(false);
+  densifier.run(whole.points);
+  Frame frame = whole.pair;
+  frame.lidar = densifier.projected().lidarPoints();
+  frame.source += ", projected as the tools project it";
+  return frame;
 }
 #endif
 
@@ -191,13 +220,26 @@ std::vector<Config> allConfigs(const Parameters& base, const Frame& frame) {
 
 /// The configurations -configs names, in allConfigs()' order; each validated now, so that a bad
 /// value stops the bench before minutes of timing rather than after.
+/// The configurations that time the whole frame (-kitti_frame), at full and half scale.
+const std::vector<std::pair<std::string, float>>& wholeFrameConfigs() {
+  static const std::vector<std::pair<std::string, float>> configs = {{"densifier", 1.0f}, {"densifier_half", 0.5f}};
+  return configs;
+}
+
+bool isWholeFrameConfig(const std::string& key) {
+  for (const auto& c : wholeFrameConfigs()) {
+    if (c.first == key) return true;
+  }
+  return false;
+}
+
 std::vector<Config> selectConfigs(const std::vector<Config>& all, const std::vector<std::string>& keys) {
   for (const std::string& key : keys) {
-    bool known = false;
+    bool known = isWholeFrameConfig(key);
     for (const Config& c : all) known = known || c.key == key;
     if (!known) {
       throw std::invalid_argument("-configs: unknown configuration '" + key +
-                                  "'; known: fused,stereo,lidar,paths8,half");
+                                  "'; known: fused,stereo,lidar,paths8,half,densifier,densifier_half");
     }
   }
   std::vector<Config> selected;
@@ -244,6 +286,7 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
   std::printf("  paths:        %d (8 in the \"fused, 8 paths\" row)\n", base.paths);
   std::printf("  mode:         ");
   for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());
+  if (configs.empty()) std::printf("the whole frame only (below)");
   std::printf("\n  timing:       median of %d frames after %d warm-up frames, per configuration\n", o.runs, o.warmups);
 }
 
@@ -381,8 +424,85 @@ int exportFrame(const Options& o, const Frame& frame) {
   return 0;
 }
 
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+std::string withCommas(std::size_t n) {
+  std::string text = std::to_string(n);
+  for (int at = static_cast<int>(text.size()) - 3; at > 0; at -= 3) text.insert(static_cast<std::size_t>(at), ",");
+  return text;
+}
+
+/// The whole frame as the tools run it, in pairs with OpenCV's SGBM at the scale it matches:
+/// the full pair with -num_disparities, or the pair halved (INTER_AREA) with half of them.
+void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend, const Parameters& base,
+                      const std::vector<std::string>& keys) {
+  const int threads = effectiveThreads(base);
+  std::printf("\nWhole frame: Densifier::run with the tools' defaults (fused; range from the LiDAR; confidence, "
+              "sky and outlier filters, minimum confidence; a colored cloud in the LiDAR frame), %s, %d threads;\n"
+              "paired with OpenCV's StereoSGBM (stereo only) on the pair at the scale matched, %d threads: %d pairs "
+              "after %d warm-up pairs\n",
+              toString(backend).c_str(), threads, threads, o.runs, o.warmups);
+  std::printf("\n| config | frame ms | project | match | of which core stages | of which confidence | reproject | "
+              "disparities | cloud points | OpenCV SGBM ms | paired ratio [min, max] |\n"
+              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+  std::fflush(stdout);
+  for (const auto& config : wholeFrameConfigs()) {
+    bool wanted = keys.empty();
+    for (const std::string& key : keys) wanted = wanted || key == config.first;
+    if (!wanted) continue;
+    const float scale = config.second;
+    SgbmSettings sgbm;
+    sgbm.numDisparities = base.numDisparities;
+    Frame sgbmPair = whole.pair;
+    if (scale != 1.0f) {
+      sgbm.numDisparities = base.numDisparities / 2;
+      sgbmPair = resizedFrame(whole.pair, (whole.pair.width() + 1) / 2, (whole.pair.height() + 1) / 2);
+    }
+    const WholeFrameMeasurement m =
+        measureWholeFrame(whole, backend, base.threads, scale, sgbmPair, sgbm, o.runs, o.warmups);
+    const double peak = peakRssMiB();
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %d | %s | %s (%s, %d disp.) | %.2f [%.2f, %.2f] |\n",
+                config.first.c_str(), ms(m.frameMs).c_str(), ms(m.projectMs).c_str(), ms(m.matchMs).c_str(),
+                ms(m.kernelMs).c_str(), ms(m.confidenceMs).c_str(), ms(m.reprojectMs).c_str(), m.disparities,
+                withCommas(m.cloudPoints).c_str(), ms(m.paired.sgbmMs).c_str(),
+                sizeText(sgbmPair.width(), sgbmPair.height()).c_str(), sgbm.numDisparities, m.paired.ratio,
+                m.paired.ratioMin, m.paired.ratioMax);
+    std::printf("result config=%s backend=%s scale=%g disparities=%d runs=%d frame_ms=%.3f project_ms=%.3f "
+                "match_ms=%.3f kernel_ms=%.3f reproject_ms=%.3f sgbm_ms=%.3f ratio=%.3f points=%zu peak_rss_mib=%.1f\n",
+                config.first.c_str(), toString(backend).c_str(), static_cast<double>(scale), m.disparities, o.runs,
+                m.frameMs, m.projectMs, m.matchMs, m.kernelMs, m.reprojectMs, m.paired.sgbmMs, m.paired.ratio,
+                m.cloudPoints, peak);
+    std::fflush(stdout);
+  }
+  std::printf("\nframe ms: wall clock around Densifier::run, median; project, match, reproject: its "
+              "DensificationTimings; core stages: Matcher::lastTimings() (match - core stages = the pair check, "
+              "the confidence's inputs, the filters and the minimum confidence); disparities: the range searched "
+              "(full-resolution px); ratio: Densifier frame / OpenCV frame per pair, median [min, max]. peak_rss_mib "
+              "in the result lines: the process's peak RSS after that configuration (the first one's is the full "
+              "frame's when no other configuration ran before it).\n");
+}
+#endif
+
 int run(const Options& o) {
+  std::vector<std::string> wholeKeys;
+  std::vector<std::string> matcherKeys;
+  for (const std::string& key : o.configs) (isWholeFrameConfig(key) ? wholeKeys : matcherKeys).push_back(key);
+  if (!wholeKeys.empty() && o.kittiFrame.empty()) {
+    throw std::invalid_argument("-configs " + wholeKeys.front() + " times a whole frame: give -kitti_frame ID");
+  }
+  [[maybe_unused]] const bool wholeFrames = !o.kittiFrame.empty() && (o.configs.empty() || !wholeKeys.empty());
+  // With -kitti_frame and no -configs: the whole-frame configurations only.
+  const bool matcherConfigs = !matcherKeys.empty() || (o.configs.empty() && o.kittiFrame.empty());
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+  std::optional<WholeFrame> whole;
+  if (!o.kittiFrame.empty()) whole = loadKitti2015LidarFrame(dataRoot(o), o.kittiFrame);
+  // The projection runs a Densifier: only when the matcher's configurations need its points, so
+  // that the peak memory before the whole frames is the inputs' alone.
+  const bool project = whole && (matcherConfigs || !o.exportFrame.empty());
+  const Frame frame = !whole ? loadFrame(o) : project ? projectedFrame(*whole) : whole->pair;
+#else
+  if (!o.kittiFrame.empty()) throw std::runtime_error("-kitti_frame needs a lidar_sgm_bench built with lidar_sgm::io");
   const Frame frame = loadFrame(o);
+#endif
   if (!o.exportFrame.empty()) return exportFrame(o, frame);
   const Backend backend = resolve(backendFromString(o.backend));
   if (!isAvailable(backend)) {
@@ -393,7 +513,8 @@ int run(const Options& o) {
   base.paths = o.paths;
   base.threads = o.threads;
   validate(base);
-  const std::vector<Config> configs = selectConfigs(allConfigs(base, frame), o.configs);
+  const std::vector<Config> configs =
+      matcherConfigs ? selectConfigs(allConfigs(base, frame), matcherKeys) : std::vector<Config>{};
 
   printSettings(o, frame, backend, base, configs);
   std::printf("  memory:       peak RSS after loading, before the first frame: %.1f MiB\n\n", peakRssMiB());
@@ -412,12 +533,17 @@ int run(const Options& o) {
     std::fflush(stdout);
     rows.push_back({c.label, m, c.params.scale != 1.0f});
   }
-  printTable(rows);
-#ifdef LIDAR_SGM_BENCH_HAVE_OPENCV
-  compareWithOpenCv(o, frame, backend, base, rows);
-#else
-  std::printf("\nOpenCV: not found at build time, no StereoSGBM comparison\n");
+#ifdef LIDAR_SGM_BENCH_HAVE_IO
+  if (wholeFrames) printWholeFrames(o, *whole, backend, base, wholeKeys);
 #endif
+  if (!rows.empty()) {
+    printTable(rows);
+#ifdef LIDAR_SGM_BENCH_HAVE_OPENCV
+    compareWithOpenCv(o, frame, backend, base, rows);
+#else
+    std::printf("\nOpenCV: not found at build time, no StereoSGBM comparison\n");
+#endif
+  }
   if (o.growth) printGrowth(o, frame, backend, base);
   return 0;
 }

@@ -11,4 +11,11 @@ function(lidar_sgm_target_defaults target)
     endif()
   endif()
   target_compile_features(${target} PUBLIC cxx_std_17)
+  # A program records only the shared libraries it calls (Debian's linker records every one it is
+  # given): each one recorded is loaded, relocated and initialised before main(), whether used or
+  # not (BENCHMARK.md, "Start-up").
+  get_target_property(type ${target} TYPE)
+  if(type STREQUAL "EXECUTABLE" AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang" AND NOT APPLE)
+    target_link_options(${target} PRIVATE LINKER:--as-needed)
+  endif()
 endfunction()

@@ -6,7 +6,8 @@ set -euo pipefail
 packages=(
   build-essential cmake        # compiler and build system
   ccache                       # compiler cache: scripts/build.sh, test.sh and test_sanitizers.sh use it
-  libopencv-dev                # io and tools: imgcodecs, imgproc
+  libopencv-dev                # io and tools: core, imgproc (images in memory); tests and eval: imgcodecs
+  libpng-dev libjpeg-dev       # io: PNG in and out, JPEG in (without OpenCV's imgcodecs and its ~130 libraries)
   libyaml-cpp-dev              # io: the calibration YAML reader (OpenCV's parser hung on hostile files)
   libgtest-dev libgmock-dev    # tests
   libeigen3-dev                # geometry

@@ -51,7 +51,7 @@ cv::Size imageSize(const std::string& path) {
   const std::string unreadable = unreadableFileReason(path);
   if (!unreadable.empty()) throw std::runtime_error("cannot read image '" + path + "': " + unreadable);
   const detail::PngHeader png = detail::readPngHeader(path);
-  // OpenCV 4.6 reads no size without decoding the pixels; other formats pay for that.
+  // Only a PNG's size is read from its header; other formats are decoded for it.
   if (!png.signature) return readImage(path).size();
   if (png.bytes < detail::kPngHeaderBytes) {
     throw std::runtime_error("cannot read image '" + path + "': a PNG cut short: " + std::to_string(png.bytes) +

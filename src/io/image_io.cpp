@@ -11,10 +11,13 @@
 #include <stdexcept>
 #include <system_error>
 
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the IMWRITE_* names only: the codecs are ours (png_codec.hpp says why)
 #include <opencv2/imgproc.hpp>
 
 #include "image_header.hpp"
+#include "jpeg_decoder.hpp"
+#include "png_codec.hpp"
+#include "pnm_decoder.hpp"
 #include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 #include <unistd.h>
@@ -27,49 +30,67 @@ namespace io {
 namespace fs = std::filesystem;
 namespace {
 
-// A PNG's size is in its first chunk (IHDR): checked before decoding, since OpenCV allocates
-// the whole image first (a 1 MB PNG of 30000x30000 asked for 8.6 GB).
+// A PNG's size is in its first chunk (IHDR): checked before decoding, since the decoder allocates
+// the whole image first (a 1 MB PNG of 30000x30000 would ask for 8.6 GB).
 void requirePngSizeWithinLimit(const std::string& path) {
   const detail::PngHeader png = detail::readPngHeader(path);
-  if (!png.ihdr) return;  // not a PNG, or a broken one: OpenCV refuses it
+  if (!png.ihdr) return;  // not a PNG, or a broken one: the decoder refuses it
   const auto limit = static_cast<std::uint32_t>(kMaxImageSide);
   if (png.width > limit || png.height > limit) detail::failImageTooLarge(path, png.width, png.height);
 }
 
-// OpenCV picks a decoder by the file's bytes, not its name, among every codec it was built with:
-// a file with "DICM" at byte 128 goes to GDCM, whose reader aborts on an assert (found by
-// fuzz_png, tests/data/hostile/png_dicom_magic.png). Only the formats a rig's images come in
-// reach OpenCV: PNG, JPEG and binary or ASCII PGM/PPM. Their signatures sit at byte 0, and
-// OpenCV tries their decoders before GDCM's, so the file goes to the decoder its signature names.
-void requireImageSignature(const std::string& path) {
+enum class ImageFormat { Png, Jpeg, Pnm };
+
+// The formats a rig's images come in: PNG, JPEG and binary or ASCII PGM/PPM, each known by the
+// signature at byte 0 (not by the file's name).
+ImageFormat requireImageSignature(const std::string& path) {
   unsigned char head[8] = {};
   std::ifstream in(path, std::ios::binary);
   in.read(reinterpret_cast<char*>(head), sizeof head);
   const auto got = static_cast<std::size_t>(in.gcount());
   static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  const bool png = got == 8 && std::memcmp(head, kPng, 8) == 0;
-  const bool jpeg = got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF;
-  const bool pnm = got >= 3 && head[0] == 'P' && (head[1] == '2' || head[1] == '3' || head[1] == '5' || head[1] == '6') &&
-                   std::isspace(head[2]) != 0;
-  if (!png && !jpeg && !pnm) {
-    throw std::runtime_error("cannot read image '" + path +
-                             "': not a PNG, JPEG or PGM/PPM file (its first bytes are none of their signatures)");
+  if (got >= 8 && std::memcmp(head, kPng, 8) == 0) return ImageFormat::Png;
+  if (got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return ImageFormat::Jpeg;
+  if (got >= 3 && head[0] == 'P' && (head[1] == '2' || head[1] == '3' || head[1] == '5' || head[1] == '6') &&
+      std::isspace(head[2]) != 0) {
+    return ImageFormat::Pnm;
   }
+  throw std::runtime_error("cannot read image '" + path +
+                           "': not a PNG, JPEG or PGM/PPM file (its first bytes are none of their signatures)");
+}
+
+std::vector<std::uint8_t> readWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw std::runtime_error("cannot read image '" + path + "': cannot open it");
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw std::runtime_error("cannot read image '" + path + "': cannot tell its size");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  in.seekg(0);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) {
+    throw std::runtime_error("cannot read image '" + path + "': a read error");
+  }
+  return bytes;
 }
 
 cv::Mat readAny(const std::string& path) {
   const std::string unreadable = unreadableFileReason(path);
   if (!unreadable.empty()) throw std::runtime_error("cannot read image '" + path + "': " + unreadable);
-  requireImageSignature(path);
+  const ImageFormat format = requireImageSignature(path);
   requirePngSizeWithinLimit(path);
+  const std::vector<std::uint8_t> bytes = readWholeFile(path);
   cv::Mat image;
   try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    switch (format) {
+      case ImageFormat::Png: image = detail::decodePng(bytes.data(), bytes.size()); break;
+      case ImageFormat::Jpeg: image = detail::decodeJpeg(bytes.data(), bytes.size()); break;
+      case ImageFormat::Pnm: image = detail::decodePnm(bytes.data(), bytes.size()); break;
+    }
   } catch (const cv::Exception& e) {
     throw std::runtime_error("cannot read image '" + path + "': " + e.what());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot read image '" + path + "': not a readable image file (" + e.what() + ")");
   }
   if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': not a readable image file");
-  // Other formats are checked once decoded (OpenCV bounds them by CV_IO_MAX_IMAGE_PIXELS first).
   if (image.cols > kMaxImageSide || image.rows > kMaxImageSide) {
     detail::failImageTooLarge(path, static_cast<std::uint64_t>(image.cols), static_cast<std::uint64_t>(image.rows));
   }
@@ -245,15 +266,27 @@ cv::Mat quantiseColors(const cv::Mat& image, int levels) {
 void writeImageAtomically(const std::string& path, const cv::Mat& image) { writeImageAtomically(path, image, {}); }
 
 void writeImageAtomically(const std::string& path, const cv::Mat& image, const std::vector<int>& params) {
-  // Encoded in memory, then written through AtomicFile: OpenCV's file writers do not report
-  // every write error (a full disk could leave a truncated PNG).
+  // Encoded in memory, then written through AtomicFile: every write is checked, so a full disk
+  // cannot leave a truncated PNG.
+  if (lowerExtension(path) != ".png") {
+    throw std::runtime_error("cannot write '" + path + "': images are written as PNG (a .png file)");
+  }
+  if (params.size() % 2 != 0) throw std::invalid_argument("writeImageAtomically: parameters come in name, value pairs");
+  int compression = -1;
+  for (std::size_t i = 0; i < params.size(); i += 2) {
+    if (params[i] != cv::IMWRITE_PNG_COMPRESSION) {
+      throw std::invalid_argument("writeImageAtomically: only cv::IMWRITE_PNG_COMPRESSION is taken, got parameter " +
+                                  std::to_string(params[i]));
+    }
+    compression = params[i + 1];
+    if (compression < 0 || compression > 9) {
+      throw std::invalid_argument("writeImageAtomically: PNG compression must be 0-9, got " + std::to_string(compression));
+    }
+  }
   std::vector<std::uint8_t> encoded;
   try {
-    if (!cv::imencode(fs::path(path).extension().string(), image, encoded, params)) {
-      throw std::runtime_error("cannot write '" + path + "': OpenCV cannot encode this image as '" +
-                               fs::path(path).extension().string() + "'");
-    }
-  } catch (const cv::Exception& e) {
+    encoded = detail::encodePng(image, compression);
+  } catch (const std::exception& e) {
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
   writeFileAtomically(path, encoded.data(), encoded.size());

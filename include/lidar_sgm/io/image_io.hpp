@@ -1,5 +1,6 @@
 #pragma once
-/// @file image_io.hpp  Reading and writing images and disparity files (OpenCV imgcodecs).
+/// @file image_io.hpp  Reading and writing images and disparity files (libpng, libjpeg; images
+/// held as cv::Mat, with the pixels and PNG bytes cv::imread / cv::imencode give).
 
 #include <cstdint>
 #include <string>
@@ -18,7 +19,7 @@ constexpr int kMaxImageSide = 16384;
 
 /// Reads an image as stored (8 or 16 bit; 1, 3 or 4 channels, BGR order), decoded once; toGray()
 /// and toColor() then give what matching and coloring need. PNG, JPEG and PGM/PPM only (checked
-/// from the first bytes: OpenCV would hand other bytes to any codec it was built with). Throws
+/// from the first bytes, not the name). Throws
 /// std::runtime_error naming the file when it is missing, of another format, larger than
 /// kMaxImageSide on a side (a PNG's size is checked from its header, before decoding), or of
 /// another depth / channel count.
@@ -26,7 +27,7 @@ cv::Mat readImage(const std::string& path);
 /// The size of the image at `path` (width x height), decoding nothing where the format allows:
 /// a PNG's comes from its header (IHDR, bytes 16-23), so a PNG whose pixel data is damaged still
 /// gives one (readImage() refuses it); JPEG and PGM/PPM are decoded as readImage() decodes them
-/// (OpenCV 4.6 reads no size otherwise). Throws std::runtime_error "cannot read image '<path>':
+/// (their headers are not parsed separately). Throws std::runtime_error "cannot read image '<path>':
 /// <problem>" for what readImage() refuses before decoding (a missing file, another format, a
 /// side above kMaxImageSide), a PNG cut short before its size, or one with no IHDR chunk first.
 cv::Size imageSize(const std::string& path);
@@ -81,10 +82,12 @@ cv::Mat colorizeDisparity(ImageView<const std::int16_t> disparity16, double maxD
 cv::Mat quantiseColors(const cv::Mat& image, int levels);
 
 /// Writes through a temporary file in the same directory, renamed over `path` only once the
-/// image is complete, so a crash never leaves a partial file. Throws std::runtime_error.
+/// image is complete, so a crash never leaves a partial file. PNG only (`path` must end in .png):
+/// an 8- or 16-bit image of 1, 3 (BGR) or 4 (BGRA) channels, the bytes cv::imencode(".png")
+/// writes. Throws std::runtime_error (std::invalid_argument for bad parameters).
 void writeImageAtomically(const std::string& path, const cv::Mat& image);
-/// The same with OpenCV's imwrite parameters, e.g. {cv::IMWRITE_PNG_COMPRESSION, 9} for the
-/// smallest PNG (OpenCV's default level, 1, favours speed).
+/// The same with OpenCV's imwrite parameter {cv::IMWRITE_PNG_COMPRESSION, 0-9}, e.g. 9 for the
+/// smallest PNG (the default, level 1 with the SUB filter and RLE, favours speed, as OpenCV's).
 void writeImageAtomically(const std::string& path, const cv::Mat& image, const std::vector<int>& params);
 
 }  // namespace io

@@ -1,0 +1,119 @@
+// lidar_sgm_bench -kitti_frame: the whole frame as the tools run it, paired with OpenCV's SGBM.
+// One frame of each whole-frame configuration; the cloud it times is the one lidar_sgm_densify
+// writes for the same frame (same point count), so the bench cannot drift from the tools.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "common/test_paths.hpp"
+
+namespace lidar_sgm {
+namespace {
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode;        ///< -1 when the tool did not exit normally
+  std::string output;  ///< stdout + stderr
+};
+
+RunResult run(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  std::string output;
+  std::array<char, 512> buffer{};
+  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+/// The key=value pairs of the "result config=<config> ..." line; empty when there is none.
+std::map<std::string, std::string> resultLine(const std::string& output, const std::string& config) {
+  std::istringstream lines(output);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("result config=" + config + " ", 0) != 0) continue;
+    std::map<std::string, std::string> values;
+    std::istringstream words(line.substr(7));
+    std::string word;
+    while (words >> word) {
+      const auto eq = word.find('=');
+      if (eq != std::string::npos) values[word.substr(0, eq)] = word.substr(eq + 1);
+    }
+    return values;
+  }
+  return {};
+}
+
+const fs::path kKitti = fs::path(test::kSharedDataDir) / "kitti2015_lidar";
+const char* kFrame = "000007_10";
+
+class BenchWholeFrame : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!*test::kBenchTool) GTEST_SKIP() << "lidar_sgm_bench is not built";
+    if (!fs::is_directory(kKitti)) GTEST_SKIP() << kKitti << " is absent";
+  }
+  std::string bench() const {
+    return std::string(test::kBenchTool) + " -data " + test::kSharedDataDir + " -threads 2";
+  }
+};
+
+TEST_F(BenchWholeFrame, TimesTheCloudTheDensifyToolWrites) {
+  const RunResult r = run(bench() + " -kitti_frame 000007 -runs 1 -warmups 0");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("| densifier |"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("| densifier_half |"), std::string::npos) << r.output;
+  const auto full = resultLine(r.output, "densifier");
+  const auto half = resultLine(r.output, "densifier_half");
+  ASSERT_FALSE(full.empty()) << r.output;
+  ASSERT_FALSE(half.empty()) << r.output;
+  for (const auto* values : {&full, &half}) {
+    for (const char* key : {"frame_ms", "project_ms", "match_ms", "kernel_ms", "reproject_ms", "sgbm_ms", "ratio",
+                            "peak_rss_mib"}) {
+      ASSERT_EQ(values->count(key), 1u) << key << "\n" << r.output;
+      EXPECT_GT(std::stod(values->at(key)), 0.0) << key << "\n" << r.output;
+    }
+    // The steps are parts of the frame, the core's stages part of the match.
+    EXPECT_LE(std::stod(values->at("match_ms")), std::stod(values->at("frame_ms")));
+    EXPECT_LE(std::stod(values->at("kernel_ms")), std::stod(values->at("match_ms")));
+    EXPECT_GT(std::stoi(values->at("disparities")), 0);
+  }
+  EXPECT_EQ(full.at("scale"), "1");
+  EXPECT_EQ(half.at("scale"), "0.5");
+
+  if (!*test::kDensifyTool) return;
+  const fs::path out = fs::temp_directory_path() / ("lidar_sgm_bench_whole_" + std::to_string(::getpid()) + ".pcd");
+  const std::string scan = (kKitti / "velodyne" / (std::string(kFrame) + ".bin")).string();
+  const RunResult tool = run(std::string(test::kDensifyTool) + " " + scan + " " + out.string() + " -calib " +
+                             (kKitti / "calib/calib_cam_to_cam.txt").string() + " -left " +
+                             (kKitti / "image_2" / (std::string(kFrame) + ".png")).string() + " -right " +
+                             (kKitti / "image_3" / (std::string(kFrame) + ".png")).string());
+  ASSERT_EQ(tool.exitCode, 0) << tool.output;
+  std::ifstream pcd(out, std::ios::binary);
+  std::string line, points;
+  while (std::getline(pcd, line) && line.rfind("DATA", 0) != 0) {
+    if (line.rfind("POINTS ", 0) == 0) points = line.substr(7);
+  }
+  fs::remove(out);
+  EXPECT_EQ(full.at("points"), points) << "the bench's frame is not the tool's";
+}
+
+TEST_F(BenchWholeFrame, WholeFrameConfigurationsNeedAFrameAndAMissingFrameIsNamed) {
+  const RunResult noFrame = run(std::string(test::kBenchTool) + " -synthetic -configs densifier -runs 1");
+  EXPECT_EQ(noFrame.exitCode, 1) << noFrame.output;
+  EXPECT_NE(noFrame.output.find("give -kitti_frame ID"), std::string::npos) << noFrame.output;
+  const RunResult missing = run(bench() + " -kitti_frame 999999 -runs 1");
+  EXPECT_EQ(missing.exitCode, 1) << missing.output;
+  EXPECT_NE(missing.output.find("999999_10"), std::string::npos) << missing.output;
+}
+
+}  // namespace
+}  // namespace lidar_sgm
