@@ -51,7 +51,7 @@ class DensifyResult:
     @property
     def point_confidence(self) -> Optional[npt.NDArray[np.float32]]: ...  # (M,) in [0, 1], None with no_confidence
     @property
-    def timings(self) -> Dict[str, float]: ...  # project, match, reproject, total [ms]
+    def timings(self) -> Dict[str, float]: ...  # project, match, filters (part of match), reproject, total [ms]
     @property
     def projection(self) -> Dict[str, int]: ...
     @property

@@ -96,6 +96,7 @@ DensifyResult resultOf(Densifier& densifier, bool colored) {
   const DensificationTimings& t = densifier.timings();
   r.timings["project"] = t.project;
   r.timings["match"] = t.match;
+  r.timings["filters"] = t.filters;  // part of match
   r.timings["reproject"] = t.reproject;
   r.timings["total"] = t.total();
   const geometry::ProjectionStats& s = densifier.projected().stats;
@@ -181,7 +182,7 @@ void bindDensifier(py::module_& m) {
       .def_readonly("confidence", &DensifyResult::confidence,
                     "(H, W) uint8: 255 x the probability that the disparity is right, 0 where none;\n"
                     "None with no_confidence")
-      .def_readonly("timings", &DensifyResult::timings, "milliseconds: project, match, reproject, total")
+      .def_readonly("timings", &DensifyResult::timings, "milliseconds: project, match (filters: its part after the matcher), reproject, total")
       .def_readonly("projection", &DensifyResult::projection,
                     "what happened to the input points: input, non_finite, behind_camera, out_of_range,\n"
                     "outside_image, occluded, kept")

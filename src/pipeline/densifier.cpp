@@ -7,7 +7,7 @@
 
 #include "lidar_sgm/geometry/scan_extent.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
-#include "output_filters_step.hpp"
+#include "pipeline/post_matcher_passes.hpp"
 
 namespace lidar_sgm {
 
@@ -207,29 +207,20 @@ void Densifier::match(const LidarPoints* lidar) {
   }
   matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
   lastMode_ = matcher_->lastMode();
+  const auto filtersStart = std::chrono::steady_clock::now();
+  if (!passes_) passes_ = std::make_unique<PostMatcherPasses>();
+  passes_->select(matcher_->backend(), effectiveThreads(usedParams_));
   if (config_.cropToScan && lastMode_ == MatchMode::LidarOnly) {
     // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
     geometry::cropToScanRows(disparity_.view(), projected_.samples, config_.matcher.lidarCoverageRows, 2);
   }
-  filterStats_ = useLidar ? applyOutputFilters(disparity_.view(), projected_.samples, left, config_.filters)
+  filterStats_ = useLidar ? passes_->applyOutputFilters(disparity_.view(), projected_.samples, left, config_.filters)
                           : OutputFilterStats{};
   filterStats_.inconsistentLidar = inconsistent;
-  keepConfidenceOfValidPixels();
-  dropUnconfidentPixels();
+  // The matcher's confidence, 0 where a later step removed the disparity; then the threshold.
+  passes_->confidenceOfValidPixels(disparity_.view(), matcher_->confidence(), config_.minConfidence, confidence_);
+  timings_.filters = millisecondsSince(filtersStart);
   timings_.match = millisecondsSince(start);
-}
-
-void Densifier::keepConfidenceOfValidPixels() {
-  confidence_ = Image<std::uint8_t>();
-  const ImageView<const std::uint8_t> matched = matcher_->confidence();
-  if (matched.empty()) return;
-  // The matcher's confidence, 0 where a later step (the crop) removed the disparity.
-  confidence_.resize(disparity_.width(), disparity_.height());
-  for (int y = 0; y < disparity_.height(); ++y) {
-    for (int x = 0; x < disparity_.width(); ++x) {
-      confidence_(x, y) = disparity_(x, y) == kInvalidDisparity ? 0 : matched(x, y);
-    }
-  }
 }
 
 void Densifier::setMinConfidence(double minConfidence) {
@@ -242,18 +233,14 @@ void Densifier::setConfig(const DensifierConfig& config) {
   config_ = config;
 }
 
-void Densifier::dropUnconfidentPixels() {
-  if (config_.minConfidence <= 0.0 || confidence_.empty()) return;
-  applyMinConfidence(disparity_.view(), confidence_.view(), config_.minConfidence);
-}
-
 void Densifier::reprojectResult() {
   const auto start = std::chrono::steady_clock::now();
-  cloud_ = geometry::DenseCloud();
-  depth_ = Image<float>();
   if (config_.computeCloud && haveCalibration_) {
-    geometry::depthImage(disparity_.view(), used_.focalBaseline(), config_.reprojection.maxDepth, depth_);
-    cloud_ = geometry::reproject(disparity_.view(), used_, config_.reprojection);
+    // Into last frame's depth image and cloud: their memory is reused.
+    passes_->reproject(disparity_.view(), used_, config_.reprojection, depth_, cloud_);
+  } else {
+    cloud_ = geometry::DenseCloud();
+    depth_ = Image<float>();
   }
   timings_.reproject = millisecondsSince(start);
 }

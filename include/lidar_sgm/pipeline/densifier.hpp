@@ -24,10 +24,13 @@
 
 namespace lidar_sgm {
 
+class PostMatcherPasses;
+
 /// Wall-clock time of the steps of the last run, in milliseconds.
 struct DensificationTimings {
   double project = 0;    ///< cloud -> sparse LiDAR disparities (with the occlusion filter)
   double match = 0;      ///< LiDAR-SGM (all stages of the core), the LiDAR-only crop, the output filters
+  double filters = 0;    ///< part of match: the LiDAR-only crop, the output filters, the confidence threshold
   double reproject = 0;  ///< dense disparity -> depth image and 3D points
   double total() const { return project + match + reproject; }
 };
@@ -202,8 +205,6 @@ class Densifier {
   void prepareMatcher(const std::vector<LidarSample>& samples);
   void match(const LidarPoints* lidar);
   void reprojectResult();
-  void keepConfidenceOfValidPixels();
-  void dropUnconfidentPixels();
   template <typename T>
   void copyPair(ImageView<const T> left, ImageView<const T> right, Image<T>& leftOut, Image<T>& rightOut);
 
@@ -221,6 +222,7 @@ class Densifier {
   double upBaselineRatio_ = 0.0;
   Image<Rgb8> color_;
   std::unique_ptr<Matcher> matcher_;
+  std::unique_ptr<PostMatcherPasses> passes_;  ///< the passes after the matcher, with their buffers
   Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for
   Image<std::int16_t> disparity_;
   Image<float> depth_;

@@ -1,0 +1,126 @@
+// geometry::depthImage and geometry::reproject (reprojection.cpp, the specification), fast: rows
+// split among threads; the cloud's points are counted per row first, so that every row writes
+// its points at their place in the specification's row-major order. No SIMD: the arithmetic is
+// double precision, and a vectorised (or fused multiply-add) version would round differently; the
+// expressions are the specification's, compiled with the same flags.
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "pipeline/fast/fast_passes.hpp"
+#include "pipeline/fast/parallel.hpp"
+
+namespace lidar_sgm {
+namespace fast {
+
+void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth, Image<float>& depth,
+                int threads) {
+  if (!(focalBaseline > 0.0)) throw std::invalid_argument("depthImage: focal length * baseline must be positive");
+  if (!(maxDepth > 0.0)) throw std::invalid_argument("depthImage: maxDepth must be positive [m]");
+  depth.resize(disparity16.width, disparity16.height);
+  const ImageView<float> out = depth.view();
+  parallelRanges(disparity16.height, threads, [&](int, int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const std::int16_t* in = disparity16.row(y);
+      float* row = out.row(y);
+      for (int x = 0; x < disparity16.width; ++x) {
+        const int d16 = in[x];
+        const double z = d16 > 0 ? focalBaseline * kDisparityScale / d16 : 0.0;
+        row[x] = z > 0.0 && z <= maxDepth ? static_cast<float>(z) : 0.0f;
+      }
+    }
+  });
+}
+
+namespace {
+
+// Whether the pixel gives a point, and its depth: the specification's test.
+inline bool pointDepth(int d16, double focalBaseline, double maxDepth, double& z) {
+  z = d16 > 0 ? focalBaseline * kDisparityScale / d16 : std::numeric_limits<double>::infinity();
+  return !(d16 == kInvalidDisparity || d16 <= 0 || z > maxDepth);
+}
+
+}  // namespace
+
+void reproject(ImageView<const std::int16_t> disparity16, const geometry::StereoCalibration& calibration,
+               const geometry::ReprojectionOptions& options, geometry::DenseCloud& cloud, FastPassBuffers& buffers,
+               int threads) {
+  calibration.validate();
+  if (disparity16.width != calibration.width || disparity16.height != calibration.height) {
+    throw std::invalid_argument("reproject: the disparity image is " + std::to_string(disparity16.width) + "x" +
+                                std::to_string(disparity16.height) + " but the calibration is " +
+                                std::to_string(calibration.width) + "x" + std::to_string(calibration.height));
+  }
+  if (options.stride < 1) throw std::invalid_argument("reproject: stride must be >= 1");
+  if (!(options.maxDepth > 0.0)) throw std::invalid_argument("reproject: maxDepth must be positive [m]");
+
+  const Eigen::Isometry3d T_out_cam = options.frame == geometry::OutputFrame::Lidar ? calibration.T_lidar_cam()
+                                                                                     : Eigen::Isometry3d::Identity();
+  const double fb = calibration.focalBaseline();
+  const double maxDepth = options.maxDepth;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const int stride = options.stride;
+  const int columns = (calibration.width + stride - 1) / stride;
+  const int rows = (calibration.height + stride - 1) / stride;
+
+  // Each sampled row's first point: every sampled pixel when organized, else the valid ones.
+  std::vector<int>& first = buffers.rowPoints;
+  first.assign(static_cast<std::size_t>(rows) + 1, 0);
+  if (options.keepOrganized) {
+    for (int r = 0; r <= rows; ++r) first[static_cast<std::size_t>(r)] = r * columns;
+  } else {
+    parallelRanges(rows, threads, [&](int, int r0, int r1) {
+      for (int r = r0; r < r1; ++r) {
+        const std::int16_t* in = disparity16.row(r * stride);
+        int n = 0;
+        double z = 0.0;
+        for (int x = 0; x < calibration.width; x += stride) n += pointDepth(in[x], fb, maxDepth, z) ? 1 : 0;
+        first[static_cast<std::size_t>(r) + 1] = n;
+      }
+    });
+    for (int r = 0; r < rows; ++r) first[static_cast<std::size_t>(r) + 1] += first[static_cast<std::size_t>(r)];
+  }
+  const auto total = static_cast<std::size_t>(first[static_cast<std::size_t>(rows)]);
+  cloud.points.resize(total);
+  cloud.pixels.resize(total);
+  const int ranges = rangeCount(rows, threads);
+  buffers.removedPerRange.assign(static_cast<std::size_t>(ranges), 0);  // here: NaN points per range
+  parallelRanges(rows, threads, [&](int t, int r0, int r1) {
+    std::size_t missing = 0;
+    for (int r = r0; r < r1; ++r) {
+      const int y = r * stride;
+      const std::int16_t* in = disparity16.row(y);
+      auto i = static_cast<std::size_t>(first[static_cast<std::size_t>(r)]);
+      for (int x = 0; x < calibration.width; x += stride) {
+        double z = 0.0;
+        if (!pointDepth(in[x], fb, maxDepth, z)) {
+          if (options.keepOrganized) {
+            cloud.points[i] = Eigen::Vector3f(nan, nan, nan);
+            cloud.pixels[i] = {x, y};
+            ++i;
+            ++missing;
+          }
+          continue;
+        }
+        const Eigen::Vector3d camera((x - calibration.cx()) * z / calibration.fx(),
+                                     (y - calibration.cy()) * z / calibration.fy(), z);
+        cloud.points[i] = (T_out_cam * camera).cast<float>();
+        cloud.pixels[i] = {x, y};
+        ++i;
+      }
+    }
+    buffers.removedPerRange[static_cast<std::size_t>(t)] = missing;
+  });
+  cloud.isDense = true;
+  for (const std::size_t n : buffers.removedPerRange) cloud.isDense = cloud.isDense && n == 0;
+  if (options.keepOrganized) {
+    cloud.width = columns;
+    cloud.height = rows;
+  } else {
+    cloud.width = static_cast<int>(total);
+    cloud.height = 1;
+  }
+}
+
+}  // namespace fast
+}  // namespace lidar_sgm

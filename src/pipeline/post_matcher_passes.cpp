@@ -1,0 +1,88 @@
+#include "pipeline/post_matcher_passes.hpp"
+
+#include <algorithm>
+
+#include "lidar_sgm/pipeline/min_confidence.hpp"
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+#include "pipeline/fast/fast_passes.hpp"
+#endif
+
+namespace lidar_sgm {
+
+#ifndef LIDAR_SGM_HAVE_FAST_PASSES
+namespace fast {
+struct FastPassBuffers {};
+}  // namespace fast
+#endif
+
+PostMatcherPasses::PostMatcherPasses() : buffers_(new fast::FastPassBuffers) {}
+PostMatcherPasses::~PostMatcherPasses() = default;
+
+bool PostMatcherPasses::fastBuilt() {
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  return true;
+#else
+  return false;
+#endif
+}
+
+void PostMatcherPasses::select(Backend backend, int threads) {
+  fast_ = fastBuilt() && backend != Backend::CpuRef;
+  threads_ = std::max(1, threads);
+}
+
+OutputFilterStats PostMatcherPasses::applyOutputFilters(ImageView<std::int16_t> disparity16,
+                                                        const std::vector<LidarSample>& samples,
+                                                        const GrayImageView& left, const OutputFilterOptions& options) {
+  OutputFilterStats stats;
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  if (fast_) {
+    stats.sky = fast::removeSky(disparity16, samples, left, options.sky, *buffers_, threads_);
+    stats.outliers = fast::removeOutliers(disparity16, options.outliers, *buffers_, threads_);
+    return stats;
+  }
+#endif
+  stats.sky = removeSky(disparity16, samples, left, options.sky);
+  stats.outliers = removeOutliers(disparity16, options.outliers);
+  return stats;
+}
+
+void PostMatcherPasses::confidenceOfValidPixels(ImageView<std::int16_t> disparity,
+                                                ImageView<const std::uint8_t> matched, double minConfidence,
+                                                Image<std::uint8_t>& confidence) {
+  if (matched.empty()) {
+    confidence = Image<std::uint8_t>();
+    return;
+  }
+  confidence.resize(disparity.width, disparity.height);
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  if (fast_) {
+    fast::confidenceOfValidPixels(disparity, matched, confidence.view(), std::max(minConfidence, 0.0), threads_);
+    return;
+  }
+#endif
+  // The matcher's confidence, 0 where a later step (the crop, the filters) removed the disparity.
+  for (int y = 0; y < disparity.height; ++y) {
+    for (int x = 0; x < disparity.width; ++x) {
+      confidence(x, y) = disparity(x, y) == kInvalidDisparity ? 0 : matched(x, y);
+    }
+  }
+  if (minConfidence > 0.0) applyMinConfidence(disparity, confidence.view(), minConfidence);
+}
+
+void PostMatcherPasses::reproject(ImageView<const std::int16_t> disparity16,
+                                  const geometry::StereoCalibration& calibration,
+                                  const geometry::ReprojectionOptions& options, Image<float>& depth,
+                                  geometry::DenseCloud& cloud) {
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  if (fast_) {
+    fast::depthImage(disparity16, calibration.focalBaseline(), options.maxDepth, depth, threads_);
+    fast::reproject(disparity16, calibration, options, cloud, *buffers_, threads_);
+    return;
+  }
+#endif
+  geometry::depthImage(disparity16, calibration.focalBaseline(), options.maxDepth, depth);
+  cloud = geometry::reproject(disparity16, calibration, options);
+}
+
+}  // namespace lidar_sgm
