@@ -17,7 +17,8 @@ data=${LIDAR_SGM_DATA:-$root/../shared/data}
 fail() { echo "FAIL: $*"; exit 1; }
 rm -rf "$work/prep" "$work/out"
 mkdir -p "$work"
-GPU_CHECK_PREP="$work/prep" GPU_CHECK_BUILD="$work/build" OUT="$work/out" BUILD_DIR="$build_dir" \
+# Warnings are errors, as in the main build (the CUDA sources are compiled here only).
+GPU_CHECK_CMAKE_ARGS="-DLIDAR_SGM_WARNINGS_AS_ERRORS=ON" GPU_CHECK_PREP="$work/prep" GPU_CHECK_BUILD="$work/build" OUT="$work/out" BUILD_DIR="$build_dir" \
   "$root/scripts/gpu_check.sh" --dry-run
 rc=$?
 summary=$work/out/summary.md
