@@ -36,13 +36,15 @@ template <typename T>
   return ::testing::AssertionSuccess();
 }
 
+// The helpers below serve the cpu backend's tests only: unused (and so [[maybe_unused]]) where it
+// is not built, as on the GPU machine.
 struct Size {
   int width, height;
 };
 constexpr Size kSizes[] = {{1, 1}, {2, 3}, {5, 4}, {17, 9}, {64, 40}, {131, 47}};
 
 // LiDAR support: none, a band of rows (so that rows far from it exist), sparse, dense.
-Image<std::uint8_t> supportOf(Size s, int kind, std::mt19937& engine) {
+[[maybe_unused]] Image<std::uint8_t> supportOf(Size s, int kind, std::mt19937& engine) {
   Image<std::uint8_t> support(s.width, s.height, 0);
   for (int y = 0; y < s.height; ++y) {
     for (int x = 0; x < s.width; ++x) {
@@ -55,7 +57,7 @@ Image<std::uint8_t> supportOf(Size s, int kind, std::mt19937& engine) {
 }
 
 // Disparities with invalid pixels and the ends of int16 (the range's 16-bit span).
-Image<std::int16_t> disparityOf(Size s, int invalidOneIn, std::mt19937& engine) {
+[[maybe_unused]] Image<std::int16_t> disparityOf(Size s, int invalidOneIn, std::mt19937& engine) {
   Image<std::int16_t> disparity(s.width, s.height);
   for (int y = 0; y < s.height; ++y) {
     for (int x = 0; x < s.width; ++x) {
@@ -85,7 +87,7 @@ Image<T> imageOf(Size s, int maxValue, std::mt19937& engine) {
 }
 
 // The core's inputs and confidence of a frame, as the Matcher computes them for cpu_ref.
-void coreConfidence(const GrayImageView& image, const Image<std::uint8_t>& support, const Image<std::int16_t>& disparity,
+[[maybe_unused]] void coreConfidence(const GrayImageView& image, const Image<std::uint8_t>& support, const Image<std::int16_t>& disparity,
                     MatchMode mode, int paths, ConfidenceInputs& in, Image<std::uint8_t>& confidence) {
   const int W = disparity.width();
   const int H = disparity.height();
@@ -102,7 +104,7 @@ void coreConfidence(const GrayImageView& image, const Image<std::uint8_t>& suppo
 }
 
 // The inputs only the backend's cost volume gives, at random.
-void randomVolumeInputs(Size s, std::mt19937& engine, ConfidenceInputs& in) {
+[[maybe_unused]] void randomVolumeInputs(Size s, std::mt19937& engine, ConfidenceInputs& in) {
   in.margin = Image<std::uint8_t>(s.width, s.height);
   in.bestCost = Image<std::uint16_t>(s.width, s.height);
   in.leftRightDifference = Image<std::uint8_t>(s.width, s.height);
