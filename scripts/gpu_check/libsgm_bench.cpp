@@ -123,11 +123,12 @@ int run(int argc, char** argv) {
   const int height = left.height;
 
   // Our defaults where libSGM has the same setting: P1 10, P2 100 (libSGM's default P2 is 120),
-  // no uniqueness test (1.0; ours: uniquenessRatio 0), left-right check with 1 px (ours:
-  // disp12MaxDiff 1), subpixel, the plain 9x7 census (libSGM's default is the symmetric one).
+  // no uniqueness test (1.0; ours: uniquenessRatio 0), left-right check with 2 px (ours:
+  // disp12MaxDiff 2; libSGM's default is 1), subpixel, the plain 9x7 census (libSGM's default is
+  // the symmetric one).
   // libSGM's median filter is 3x3 and always on (ours: 5x5).
   sgm::StereoSGM::Parameters params(10, 100, 1.0f, true,
-                                    paths == 8 ? sgm::PathType::SCAN_8PATH : sgm::PathType::SCAN_4PATH, 0, 1,
+                                    paths == 8 ? sgm::PathType::SCAN_8PATH : sgm::PathType::SCAN_4PATH, 0, 2,
                                     sgm::CensusType::CENSUS_9x7);
 
   int device = 0;
