@@ -277,12 +277,20 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
               backend == Backend::CpuRef ? ", but cpu_ref runs on one" : "");
   std::printf("  input:        %s\n", frame.source.c_str());
   for (const auto& file : frame.files) std::printf("    %-6s      %s\n", file.first.c_str(), file.second.c_str());
-  std::printf("  image:        %s, 8-bit gray; %zu LiDAR points (%.2f %% of the pixels)\n",
-              sizeText(frame.width(), frame.height()).c_str(), frame.lidar.size(),
-              100.0 * static_cast<double>(frame.lidar.size()) / (static_cast<double>(frame.width()) * frame.height()));
-  std::printf("  disparities:  %d (from %d), fixed: the tools take the range from the LiDAR by default,\n"
-              "                the bench times a given one (OpenCV SGBM searches the same)\n",
-              base.numDisparities, base.minDisparity);
+  if (configs.empty()) {
+    // The whole frame only: Densifier::run projects the raw scan and takes the range from it in
+    // every frame, as the tools do (the table gives the range of each configuration).
+    std::printf("  image:        %s, 8-bit gray; the raw scan, projected in each frame by Densifier::run\n",
+                sizeText(frame.width(), frame.height()).c_str());
+    std::printf("  disparities:  from the LiDAR in each frame, as the tools (the table's column)\n");
+  } else {
+    std::printf("  image:        %s, 8-bit gray; %zu LiDAR points (%.2f %% of the pixels)\n",
+                sizeText(frame.width(), frame.height()).c_str(), frame.lidar.size(),
+                100.0 * static_cast<double>(frame.lidar.size()) / (static_cast<double>(frame.width()) * frame.height()));
+    std::printf("  disparities:  %d (from %d), fixed: the tools take the range from the LiDAR by default,\n"
+                "                the bench times a given one (OpenCV SGBM searches the same)\n",
+                base.numDisparities, base.minDisparity);
+  }
   std::printf("  paths:        %d (8 in the \"fused, 8 paths\" row)\n", base.paths);
   std::printf("  mode:         ");
   for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());
