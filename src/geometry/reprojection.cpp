@@ -1,8 +1,8 @@
 #include "lidar_sgm/geometry/reprojection.hpp"
 
 #include <limits>
-#include <stdexcept>
-#include <string>
+
+#include "geometry/reprojection_checks.hpp"
 
 namespace lidar_sgm {
 namespace geometry {
@@ -12,14 +12,7 @@ namespace {
 template <typename T>
 void checkInputs(ImageView<const T> disparity, const StereoCalibration& calibration,
                  const ReprojectionOptions& options) {
-  calibration.validate();
-  if (disparity.width != calibration.width || disparity.height != calibration.height) {
-    throw std::invalid_argument("reproject: the disparity image is " + std::to_string(disparity.width) + "x" +
-                                std::to_string(disparity.height) + " but the calibration is " +
-                                std::to_string(calibration.width) + "x" + std::to_string(calibration.height));
-  }
-  if (options.stride < 1) throw std::invalid_argument("reproject: stride must be >= 1");
-  if (!(options.maxDepth > 0.0)) throw std::invalid_argument("reproject: maxDepth must be positive [m]");
+  checkReprojectionInputs(disparity.width, disparity.height, calibration, options);
 }
 
 /// The cloud of a depth per pixel: `depthAt(x, y)` is z [m], 0 where the pixel has none.
@@ -90,8 +83,7 @@ DenseCloud reproject(ImageView<const float> disparity, const StereoCalibration& 
 
 void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth,
                 Image<float>& depth) {
-  if (!(focalBaseline > 0.0)) throw std::invalid_argument("depthImage: focal length * baseline must be positive");
-  if (!(maxDepth > 0.0)) throw std::invalid_argument("depthImage: maxDepth must be positive [m]");
+  checkDepthImageInputs(focalBaseline, maxDepth);
   depth.resize(disparity16.width, disparity16.height);
   for (int y = 0; y < disparity16.height; ++y) {
     const std::int16_t* in = disparity16.row(y);

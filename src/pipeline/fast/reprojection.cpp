@@ -4,9 +4,8 @@
 // double precision, and a vectorised (or fused multiply-add) version would round differently; the
 // expressions are the specification's, compiled with the same flags.
 #include <limits>
-#include <stdexcept>
-#include <string>
 
+#include "geometry/reprojection_checks.hpp"
 #include "pipeline/fast/fast_passes.hpp"
 #include "pipeline/fast/parallel.hpp"
 
@@ -15,8 +14,7 @@ namespace fast {
 
 void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth, Image<float>& depth,
                 int threads) {
-  if (!(focalBaseline > 0.0)) throw std::invalid_argument("depthImage: focal length * baseline must be positive");
-  if (!(maxDepth > 0.0)) throw std::invalid_argument("depthImage: maxDepth must be positive [m]");
+  geometry::checkDepthImageInputs(focalBaseline, maxDepth);
   depth.resize(disparity16.width, disparity16.height);
   const ImageView<float> out = depth.view();
   parallelRanges(disparity16.height, threads, [&](int, int y0, int y1) {
@@ -45,14 +43,7 @@ inline bool pointDepth(int d16, double focalBaseline, double maxDepth, double& z
 void reproject(ImageView<const std::int16_t> disparity16, const geometry::StereoCalibration& calibration,
                const geometry::ReprojectionOptions& options, geometry::DenseCloud& cloud, FastPassBuffers& buffers,
                int threads) {
-  calibration.validate();
-  if (disparity16.width != calibration.width || disparity16.height != calibration.height) {
-    throw std::invalid_argument("reproject: the disparity image is " + std::to_string(disparity16.width) + "x" +
-                                std::to_string(disparity16.height) + " but the calibration is " +
-                                std::to_string(calibration.width) + "x" + std::to_string(calibration.height));
-  }
-  if (options.stride < 1) throw std::invalid_argument("reproject: stride must be >= 1");
-  if (!(options.maxDepth > 0.0)) throw std::invalid_argument("reproject: maxDepth must be positive [m]");
+  geometry::checkReprojectionInputs(disparity16.width, disparity16.height, calibration, options);
 
   const Eigen::Isometry3d T_out_cam = options.frame == geometry::OutputFrame::Lidar ? calibration.T_lidar_cam()
                                                                                      : Eigen::Isometry3d::Identity();
