@@ -23,20 +23,24 @@ std::uint32_t bigEndian32(const unsigned char* bytes) {
 
 }  // namespace
 
+PngHeader parsePngHeader(const unsigned char* bytes, std::size_t count) {
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  PngHeader png;
+  png.bytes = count < kPngHeaderBytes ? count : kPngHeaderBytes;
+  png.signature = png.bytes >= sizeof kSignature && std::memcmp(bytes, kSignature, sizeof kSignature) == 0;
+  png.ihdr = png.signature && png.bytes == kPngHeaderBytes && std::memcmp(bytes + 12, "IHDR", 4) == 0;
+  if (png.ihdr) {
+    png.width = bigEndian32(bytes + 16);
+    png.height = bigEndian32(bytes + 20);
+  }
+  return png;
+}
+
 PngHeader readPngHeader(const std::string& path) {
   unsigned char header[kPngHeaderBytes] = {};
   std::ifstream in(path, std::ios::binary);
   in.read(reinterpret_cast<char*>(header), sizeof header);
-  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  PngHeader png;
-  png.bytes = static_cast<std::size_t>(in.gcount());
-  png.signature = png.bytes >= sizeof kSignature && std::memcmp(header, kSignature, sizeof kSignature) == 0;
-  png.ihdr = png.signature && png.bytes == kPngHeaderBytes && std::memcmp(header + 12, "IHDR", 4) == 0;
-  if (png.ihdr) {
-    png.width = bigEndian32(header + 16);
-    png.height = bigEndian32(header + 20);
-  }
-  return png;
+  return parsePngHeader(header, static_cast<std::size_t>(in.gcount()));
 }
 
 void failImageTooLarge(const std::string& path, std::uint64_t width, std::uint64_t height) {

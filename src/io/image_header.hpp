@@ -24,6 +24,9 @@ struct PngHeader {
   std::uint32_t height = 0;  ///< IHDR's, when `ihdr`
 };
 
+/// What the first `count` bytes of a file (any count; the first kPngHeaderBytes are read) say.
+PngHeader parsePngHeader(const unsigned char* bytes, std::size_t count);
+
 /// Reads at most kPngHeaderBytes of the file at `path`; never throws for what it finds there.
 PngHeader readPngHeader(const std::string& path);
 

@@ -32,8 +32,8 @@ namespace {
 
 // A PNG's size is in its first chunk (IHDR): checked before decoding, since the decoder allocates
 // the whole image first (a 1 MB PNG of 30000x30000 would ask for 8.6 GB).
-void requirePngSizeWithinLimit(const std::string& path) {
-  const detail::PngHeader png = detail::readPngHeader(path);
+void requirePngSizeWithinLimit(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const detail::PngHeader png = detail::parsePngHeader(bytes.data(), bytes.size());
   if (!png.ihdr) return;  // not a PNG, or a broken one: the decoder refuses it
   const auto limit = static_cast<std::uint32_t>(kMaxImageSide);
   if (png.width > limit || png.height > limit) detail::failImageTooLarge(path, png.width, png.height);
@@ -43,11 +43,9 @@ enum class ImageFormat { Png, Jpeg, Pnm };
 
 // The formats a rig's images come in: PNG, JPEG and binary or ASCII PGM/PPM, each known by the
 // signature at byte 0 (not by the file's name).
-ImageFormat requireImageSignature(const std::string& path) {
-  unsigned char head[8] = {};
-  std::ifstream in(path, std::ios::binary);
-  in.read(reinterpret_cast<char*>(head), sizeof head);
-  const auto got = static_cast<std::size_t>(in.gcount());
+ImageFormat requireImageSignature(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const unsigned char* head = bytes.data();
+  const std::size_t got = bytes.size();
   static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (got >= 8 && std::memcmp(head, kPng, 8) == 0) return ImageFormat::Png;
   if (got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return ImageFormat::Jpeg;
@@ -75,9 +73,10 @@ std::vector<std::uint8_t> readWholeFile(const std::string& path) {
 cv::Mat readAny(const std::string& path) {
   const std::string unreadable = unreadableFileReason(path);
   if (!unreadable.empty()) throw std::runtime_error("cannot read image '" + path + "': " + unreadable);
-  const ImageFormat format = requireImageSignature(path);
-  requirePngSizeWithinLimit(path);
+  // Read once; the signature and a PNG's size are checked on these bytes before decoding.
   const std::vector<std::uint8_t> bytes = readWholeFile(path);
+  const ImageFormat format = requireImageSignature(path, bytes);
+  requirePngSizeWithinLimit(path, bytes);
   cv::Mat image;
   try {
     switch (format) {
