@@ -195,6 +195,12 @@ int densify(const Arguments& args, const lidar_sgm::DensifierConfig& config, con
               params.scale == 1.0f ? "" : ", matched at scale 0.5", timings.match, used.width(),
               used.height(), 100.0 * static_cast<double>(validPixels(used)) / (static_cast<double>(used.width()) * used.height()),
               sgm.getFilterStats().sky, sgm.getFilterStats().outliers);
+  if (sgm.getLastMode() == lidar_sgm::MatchMode::Fused) {
+    const auto& filters = sgm.getFilterStats();
+    std::printf("LiDAR points left out of the matching: %zu hidden behind what stereo sees (its match %.0f ms), "
+                "%zu contradicted by the pair\n",
+                filters.hiddenLidar, timings.witness, filters.inconsistentLidar);
+  }
   std::printf("disparity range: %s\n", sgm.getUsedDisparityRange().describe().c_str());
   std::printf("Reprojecting [done, %.0f ms : %zu points, %ux%u, %s frame]\n", timings.reproject, dense.size(),
               dense.width, dense.height, frame == lidar_sgm::geometry::OutputFrame::Camera ? "camera" : "lidar");

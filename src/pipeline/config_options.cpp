@@ -215,6 +215,23 @@ std::vector<DensifierOption> makeTable() {
                  c.filters.outliers.minNeighbours = parseOptionInteger("outlier_min_neighbours", s);
                },
                [](const C& c) { return std::to_string(c.filters.outliers.minNeighbours); }});
+  t.push_back({"no_hidden_lidar_filter", K::Flag, kNoValue, G::Filters, S::Disparity,
+               "fused: keep in the matching the LiDAR points a stereo-only match sees a nearer surface in front of "
+               "(object edges the LiDAR sees past, glass, moved cars) (default: left out)",
+               [](C& c, const std::string& s) { c.hiddenLidar.enabled = !flagValue("no_hidden_lidar_filter", s); },
+               [](const C& c) { return flagText(!c.hiddenLidar.enabled); }});
+  t.push_back({"hidden_lidar_gap", K::Number, "PX", G::Filters, S::Disparity,
+               "a LiDAR point is hidden where the stereo disparity is larger by more than PX and " +
+                   number(100.0 * d.hiddenLidar.relativeGap) + " % of its own, in [0.5, 64]",
+               [](C& c, const std::string& s) { c.hiddenLidar.minGap = parseOptionNumber("hidden_lidar_gap", s); },
+               [](const C& c) { return number(c.hiddenLidar.minGap); }});
+  t.push_back({"hidden_lidar_scale", K::Number, "S", G::Filters, S::Disparity,
+               "the stereo witness of the hidden-LiDAR filter matched at scale 1 or 0.5 (an eighth of the work, "
+               "a little less exact)",
+               [](C& c, const std::string& s) {
+                 c.hiddenLidar.witnessScale = static_cast<float>(parseOptionNumber("hidden_lidar_scale", s));
+               },
+               [](const C& c) { return number(c.hiddenLidar.witnessScale); }});
   t.push_back({"lidar_consistency", K::Flag, kNoValue, G::Filters, S::Disparity,
                "fused: leave out of the matching the LiDAR points the stereo pair contradicts (moving objects, glass; "
                "KITTI142: foreground error 9.1 -> 6.6 %, but P1-P3 lose 0.2-0.4 points) (default: off)",

@@ -1,11 +1,13 @@
 #include "lidar_sgm/pipeline/densifier.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "lidar_sgm/geometry/scan_extent.hpp"
+#include "lidar_sgm/pipeline/hidden_lidar.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "pipeline/post_matcher_passes.hpp"
 
@@ -193,16 +195,24 @@ void Densifier::match(const LidarPoints* lidar) {
                                                             usedParams_.numDisparities);
     if (pairOrientation_.looksSwapped()) throw std::invalid_argument(swappedPairMessage(pairOrientation_));
   }
-  // The points the pair contradicts are left out of the matching (lidar_consistency.hpp); the
-  // projected scan keeps them.
-  LidarPoints consistent;
+  // The points the camera sees a nearer surface in front of (hidden_lidar.hpp), then those the
+  // pair contradicts (lidar_consistency.hpp), are left out of the matching; the projected scan
+  // keeps them.
+  LidarPoints kept;
+  std::size_t hidden = 0;
   std::size_t inconsistent = 0;
-  if (useLidar && !left.empty() && config_.lidarConsistency.enabled) {
+  timings_.witness = 0.0;
+  if (useLidar && !left.empty() && (config_.hiddenLidar.enabled || config_.lidarConsistency.enabled)) {
     std::vector<LidarSample> samples = projected_.samples;  // the scan's samples, already at hand
-    inconsistent = dropInconsistentLidar(left, right, samples, config_.lidarConsistency);
-    if (inconsistent > 0) {
-      consistent = LidarPoints(lidar->width(), lidar->height(), samples);
-      lidar = &consistent;
+    if (config_.hiddenLidar.enabled) {
+      const auto witnessStart = std::chrono::steady_clock::now();
+      hidden = dropHiddenLidar(matchStereoWitness(left, right), samples, config_.hiddenLidar);
+      timings_.witness = millisecondsSince(witnessStart);
+    }
+    if (config_.lidarConsistency.enabled) inconsistent = dropInconsistentLidar(left, right, samples, config_.lidarConsistency);
+    if (hidden + inconsistent > 0) {
+      kept = LidarPoints(lidar->width(), lidar->height(), samples);
+      lidar = &kept;
     }
   }
   matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
@@ -217,10 +227,33 @@ void Densifier::match(const LidarPoints* lidar) {
   filterStats_ = useLidar ? passes_->applyOutputFilters(disparity_.view(), projected_.samples, left, config_.filters)
                           : OutputFilterStats{};
   filterStats_.inconsistentLidar = inconsistent;
+  filterStats_.hiddenLidar = hidden;
   // The matcher's confidence, 0 where a later step removed the disparity; then the threshold.
   passes_->confidenceOfValidPixels(disparity_.view(), matcher_->confidence(), config_.minConfidence, confidence_);
   timings_.filters = millisecondsSince(filtersStart);
   timings_.match = millisecondsSince(start);
+}
+
+ImageView<const std::int16_t> Densifier::matchStereoWitness(const GrayImageView& left, const GrayImageView& right) {
+  // Stereo alone over the fused frame's range, with the left-right check whatever the fused
+  // settings (an occluded pixel must have no vote) and without the confidence nobody reads; at
+  // the frame's scale, or at half scale when asked. The fused matcher does it, before its own
+  // frame: its buffers serve both.
+  Parameters p = usedParams_;
+  p.lrCheck = true;
+  p.confidence = false;
+  if (config_.hiddenLidar.witnessScale != 1.0f) p.scale = 0.5f;
+  if (p.scale != 1.0f) {
+    // Half scale searches half the range: an even start and a multiple of 32 that still covers it.
+    const int end = p.minDisparity + p.numDisparities;
+    p.minDisparity -= ((p.minDisparity % 2) + 2) % 2;
+    p.numDisparities = std::min(512, 32 * ((end - p.minDisparity + 31) / 32));  // 512: the largest range
+  }
+  matcher_->setParameters(p);
+  witnessDisparity_.resize(left.width(), left.height());
+  matcher_->compute(left, right, nullptr, witnessDisparity_.view());
+  matcher_->setParameters(usedParams_);
+  return witnessDisparity_.view();
 }
 
 void Densifier::setMinConfidence(double minConfidence) {

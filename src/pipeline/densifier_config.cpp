@@ -32,6 +32,7 @@ std::string validationError(const DensifierConfig& c) {
     validate(c.filters.sky);
     validate(c.filters.outliers);
     validate(c.lidarConsistency);
+    validate(c.hiddenLidar);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }

@@ -38,11 +38,12 @@ constexpr std::size_t fieldCount() {
 
 // A new field of the configuration is compared below (and gets an entry in the option table,
 // config_options.cpp, when a front end sets it).
-static_assert(fieldCount<DensifierConfig>() == 12, "DensifierConfig changed: compare the new field here");
+static_assert(fieldCount<DensifierConfig>() == 13, "DensifierConfig changed: compare the new field here");
 static_assert(fieldCount<Parameters>() == 21, "Parameters changed: compare the new field here");
 static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: compare it here");
 static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: compare it here");
 static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: compare it here");
+static_assert(fieldCount<HiddenLidarOptions>() == 7, "HiddenLidarOptions changed: compare it here");
 
 void expectEqual(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.minDisparity, b.minDisparity);
@@ -101,6 +102,13 @@ void expectEqual(const DensifierConfig& a, const DensifierConfig& b) {
   EXPECT_EQ(a.lidarConsistency.marginPerPixel, b.lidarConsistency.marginPerPixel);
   EXPECT_EQ(a.lidarConsistency.searchRadius, b.lidarConsistency.searchRadius);
   EXPECT_EQ(a.lidarConsistency.minDisagreement, b.lidarConsistency.minDisagreement);
+  EXPECT_EQ(a.hiddenLidar.enabled, b.hiddenLidar.enabled);
+  EXPECT_EQ(a.hiddenLidar.minGap, b.hiddenLidar.minGap);
+  EXPECT_EQ(a.hiddenLidar.relativeGap, b.hiddenLidar.relativeGap);
+  EXPECT_EQ(a.hiddenLidar.halfWidth, b.hiddenLidar.halfWidth);
+  EXPECT_EQ(a.hiddenLidar.supportHalfWidth, b.hiddenLidar.supportHalfWidth);
+  EXPECT_EQ(a.hiddenLidar.supportHalfHeight, b.hiddenLidar.supportHalfHeight);
+  EXPECT_EQ(a.hiddenLidar.witnessScale, b.hiddenLidar.witnessScale);
   EXPECT_EQ(a.pairCheck, b.pairCheck);
   EXPECT_EQ(a.computeCloud, b.computeCloud);
 }

@@ -31,6 +31,7 @@ struct DensificationTimings {
   double project = 0;    ///< cloud -> sparse LiDAR disparities (with the occlusion filter)
   double match = 0;      ///< LiDAR-SGM (all stages of the core), the LiDAR-only crop, the output filters
   double filters = 0;    ///< part of match: the LiDAR-only crop, the output filters, the confidence threshold
+  double witness = 0;    ///< part of match: the stereo-only witness of the hidden-LiDAR check (hidden_lidar.hpp)
   double reproject = 0;  ///< dense disparity -> depth image and 3D points
   double total() const { return project + match + reproject; }
 };
@@ -204,6 +205,8 @@ class Densifier {
   geometry::StereoCalibration resolveCalibration(bool required, int lidarWidth, int lidarHeight) const;
   void prepareMatcher(const std::vector<LidarSample>& samples);
   void match(const LidarPoints* lidar);
+  /// The stereo-only disparity the hidden-LiDAR check compares the points with (hidden_lidar.hpp).
+  ImageView<const std::int16_t> matchStereoWitness(const GrayImageView& left, const GrayImageView& right);
   void reprojectResult();
   template <typename T>
   void copyPair(ImageView<const T> left, ImageView<const T> right, Image<T>& leftOut, Image<T>& rightOut);
@@ -224,6 +227,7 @@ class Densifier {
   std::unique_ptr<Matcher> matcher_;
   std::unique_ptr<PostMatcherPasses> passes_;  ///< the passes after the matcher, with their buffers
   Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for
+  Image<std::int16_t> witnessDisparity_;  ///< the stereo-only witness of the hidden-LiDAR check
   Image<std::int16_t> disparity_;
   Image<float> depth_;
   Image<std::uint8_t> confidence_;

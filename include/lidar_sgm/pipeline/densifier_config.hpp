@@ -11,6 +11,7 @@
 #include "lidar_sgm/geometry/disparity_range.hpp"
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/hidden_lidar.hpp"
 #include "lidar_sgm/pipeline/lidar_consistency.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
@@ -52,6 +53,9 @@ struct DensifierConfig {
   OutputFilterOptions filters;
   /// Fused modes: the LiDAR points the stereo pair contradicts are left out of the matching.
   LidarConsistencyOptions lidarConsistency;
+  /// Fused modes: the LiDAR points a stereo-only match sees a nearer surface in front of are left
+  /// out of the matching.
+  HiddenLidarOptions hiddenLidar;
   /// Refuse a stereo pair that looks swapped (pair_orientation.hpp) instead of matching it.
   bool pairCheck = true;
   /// Also fill the depth image and the dense cloud; off, a run stops at the disparity.

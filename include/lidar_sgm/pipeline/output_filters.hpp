@@ -21,6 +21,7 @@ struct OutputFilterStats {
   std::size_t sky = 0;
   std::size_t outliers = 0;
   std::size_t inconsistentLidar = 0;  ///< LiDAR points left out of the matching (lidar_consistency.hpp)
+  std::size_t hiddenLidar = 0;        ///< LiDAR points left out of the matching (hidden_lidar.hpp)
 };
 
 }  // namespace lidar_sgm
