@@ -72,7 +72,7 @@ WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend
   densifier.setStereoPair(frame.pair.left.view(), frame.pair.right.view());
   densifier.setColorImage(frame.color.view());
 
-  std::vector<double> project, match, reproject, kernel, confidence;
+  std::vector<double> project, match, reproject, kernel, confidence, witness;
   int frames = 0;
   const auto oneFrame = [&] {
     densifier.run(frame.points);
@@ -84,6 +84,7 @@ WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend
     const StageTimings& stages = densifier.matcher()->lastTimings();
     project.push_back(t.project);
     match.push_back(t.match);
+    witness.push_back(t.witness);
     reproject.push_back(t.reproject);
     kernel.push_back(stages.total() - stages.transfers);
     confidence.push_back(stages.confidence);
@@ -93,6 +94,7 @@ WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend
   m.frameMs = m.paired.oursMs;
   m.projectMs = median(project);
   m.matchMs = median(match);
+  m.witnessMs = median(witness);
   m.reprojectMs = median(reproject);
   m.kernelMs = median(kernel);
   m.confidenceMs = median(confidence);

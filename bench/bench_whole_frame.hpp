@@ -39,6 +39,7 @@ struct WholeFrameMeasurement {
   double projectMs = 0;    ///< DensificationTimings::project
   double matchMs = 0;      ///< DensificationTimings::match: the core's stages and the pipeline's steps around them
   double reprojectMs = 0;  ///< DensificationTimings::reproject
+  double witnessMs = 0;    ///< DensificationTimings::witness: part of match, the hidden-LiDAR filter's stereo match
   double kernelMs = 0;     ///< the core's stages (StageTimings::total() - transfers)
   double confidenceMs = 0; ///< StageTimings::confidence: the core's part of the confidence
   PairedTiming paired;     ///< Densifier::run against cv::StereoSGBM::compute, frame by frame
