@@ -12,8 +12,9 @@
 /// matches the right one clearly better at another disparity than at the point's, the point is
 /// left out of the matching (it stays in the projected scan).
 ///
-/// Off by default: measured with lidar_sgm_eval (docs/RESULTS.md), it lowers KITTI142's error
-/// (fused, 29 frames: total 2.73 -> 2.50 %, foreground 9.06 -> 6.63 %, correct 98.39 -> 98.50 %)
+/// Off by default: measured with lidar_sgm_eval (docs/RESULTS.md) before the hidden-LiDAR filter
+/// (hidden_lidar.hpp, on by default, which catches many of the same points), it lowered KITTI142's
+/// error (fused, 29 frames: total 2.73 -> 2.50 %, foreground 9.06 -> 6.63 %, correct 98.39 -> 98.50 %)
 /// but costs 0.2-0.4 points of "correct" on P1, P2 and P3, whose LiDAR is exact or whose GT is
 /// LiDAR: there every dropped point was right (often a background point the right camera cannot
 /// see beside a nearer object, where the pair cannot match it at all). Exempting the points a
