@@ -70,8 +70,11 @@ struct Parameters {
   /// multiple of 16 and kept inside [minDisparity, minDisparity + numDisparities); every other
   /// pixel searches the full range. The cost volume and the path sums hold only the windows
   /// (backends/common/lidar_search_windows.hpp). Off by default; measured in docs/RESULTS.md.
+  /// Implemented by backend cpu_ref only: the others refuse it (std::invalid_argument).
   bool gatedSearch = false;
-  int gatedSearchMargin = 8;  ///< widening of a gated window on each side [px], in [0, 512]
+  /// Widening of a gated window beyond its LiDAR disparities on each side [px], in [0, 512]; like
+  /// gatedSearchRows, in the pixels of the matched image (halved images at scale 0.5).
+  int gatedSearchMargin = 8;
   int gatedSearchRows = 6;    ///< rows above and below a pixel whose LiDAR points gate it, in [0, 64]
   int medianSize = 5;         ///< median filter window: 0 (off), 3 or 5 (the paper uses 5)
   bool subpixel = true;       ///< parabola fit through the best cost and its two neighbours
