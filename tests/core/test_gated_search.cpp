@@ -306,14 +306,19 @@ TEST(GatedSearch, WindowsAsWideAsTheRangeGiveTheUngatedFrameBitForBit) {
   const Parameters ungated = p;
   p.gatedSearch = true;
   p.gatedSearchMargin = 512;
-  for (const bool stereo : {true, false}) {
-    SCOPED_TRACE(stereo ? "fused" : "lidar-only");
-    Image<std::uint8_t> confidence, confidenceGated;
-    const Image<std::int16_t> off = match(ungated, s, &lidar, stereo, &confidence);
-    const Image<std::int16_t> on = match(p, s, &lidar, stereo, &confidenceGated);
-    EXPECT_TRUE(identical(on, off));
-    for (int y = 0; y < s.left.height(); ++y) {
-      for (int x = 0; x < s.left.width(); ++x) ASSERT_EQ(confidenceGated(x, y), confidence(x, y));
+  for (const float scale : {1.0f, 0.5f}) {
+    for (const bool stereo : {true, false}) {
+      SCOPED_TRACE(std::string(stereo ? "fused" : "lidar-only") + (scale == 1.0f ? "" : ", half scale"));
+      Parameters gated = p;
+      Parameters plain = ungated;
+      gated.scale = plain.scale = scale;
+      Image<std::uint8_t> confidence, confidenceGated;
+      const Image<std::int16_t> off = match(plain, s, &lidar, stereo, &confidence);
+      const Image<std::int16_t> on = match(gated, s, &lidar, stereo, &confidenceGated);
+      EXPECT_TRUE(identical(on, off));
+      for (int y = 0; y < s.left.height(); ++y) {
+        for (int x = 0; x < s.left.width(); ++x) ASSERT_EQ(confidenceGated(x, y), confidence(x, y));
+      }
     }
   }
   // Stereo-only frames are never gated, whatever the margin.
