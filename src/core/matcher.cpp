@@ -29,7 +29,7 @@ void copyDisparity(MatcherBackend& backend, ImageView<const std::int16_t> host, 
 void checkBackendSupports(const MatcherBackend& backend, const Parameters& params) {
   if (params.gatedSearch && !backend.searchesGatedWindows()) {
     throw std::invalid_argument("invalid parameter gatedSearch (-gated_search): backend " + toString(backend.backend()) +
-                                " does not implement the gated search; use backend cpu_ref");
+                                " does not implement the gated search; use backend cpu or cpu_ref");
   }
 }
 

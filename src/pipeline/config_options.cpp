@@ -136,7 +136,7 @@ std::vector<DensifierOption> makeTable() {
   t.push_back({"gated_search", K::Flag, kNoValue, G::Method, S::Disparity,
                "with LiDAR, search each pixel's disparities only around the LiDAR points within +-1 column and "
                "+-gated_search_rows rows (min - margin .. max + margin, widened to a multiple of 16); the full range "
-               "elsewhere and without LiDAR (default: off; backend cpu_ref only)",
+               "elsewhere and without LiDAR (default: off; backends cpu_ref and cpu)",
                [](C& c, const std::string& s) { c.matcher.gatedSearch = flagValue("gated_search", s); },
                [](const C& c) { return flagText(c.matcher.gatedSearch); }});
   t.push_back({"gated_search_margin", K::Integer, "M", G::Method, S::Disparity,

@@ -70,6 +70,16 @@ void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched);
 void fuseCostRow(const std::uint8_t* lidar, const std::uint8_t* stereo, std::size_t n, int alphaWeight256,
                  std::uint8_t* fused);
 
+// The search windows of one row (Parameters::gatedSearch, search_windows.hpp): pixel x searches
+// disparity indices [first[x], first[x] + count[x]). Null pointers: every pixel the whole range.
+// A gated pixel's path slots hold the sentinel outside its window, so that the next pixel on the
+// path reads the terms of Eq. 1 outside it as absent (gated_stages.hpp), and the kernels step
+// and select over the window only.
+struct RowWindows {
+  const std::int16_t* first = nullptr;
+  const std::int16_t* count = nullptr;
+};
+
 // aggregation.cpp. Path rows hold uint8 when pathCostsFit8Bits(largest matching cost, P2),
 // else uint16 (see aggregation.cpp); each kernel has both.
 bool pathCostsFit8Bits(int maxCost, int P2);
@@ -89,10 +99,10 @@ std::vector<T> pathRowBuffer(int width, int numDisparities) {
 // costX0 on.
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint8_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
-                         int P1, int P2, std::uint8_t* out, std::uint16_t* outMin);
+                         int P1, int P2, std::uint8_t* out, std::uint16_t* outMin, RowWindows windows = {});
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint16_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
-                         int P1, int P2, std::uint16_t* out, std::uint16_t* outMin);
+                         int P1, int P2, std::uint16_t* out, std::uint16_t* outMin, RowWindows windows = {});
 // Eq. 1 along the row itself: dx = +1 (left to right) or -1 (right to left), whole row.
 void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
                        std::uint8_t* out);
@@ -100,9 +110,9 @@ void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDi
                        std::uint16_t* out);
 // Both: left to right into `rightward`, right to left into `leftward`, interleaved.
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
-                        std::uint8_t* rightward, std::uint8_t* leftward);
+                        std::uint8_t* rightward, std::uint8_t* leftward, RowWindows windows = {});
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
-                        std::uint16_t* rightward, std::uint16_t* leftward);
+                        std::uint16_t* rightward, std::uint16_t* leftward, RowWindows windows = {});
 // The sum of `count` path rows for x0 .. x1-1 into a stored row (D per pixel, indexed from x0)
 // of either type (the other nullptr); the caller guarantees the sum fits.
 void storePathSum(const std::uint8_t* const* paths, int count, int x0, int x1, int numDisparities,
@@ -132,14 +142,16 @@ struct WinnerExtras {
   /// it then stays in the L1 cache instead of streaming a whole row of S through it.
   bool pixelTotal = false;
 };
+/// With `windows`, S, the winner, the right view's bids and the margin run over each pixel's
+/// window (gated_stages.hpp); `total` then holds the window's S from its first entry.
 void sumSelectRow(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr);
+                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr, RowWindows windows = {});
 void sumSelectRow(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr);
+                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr, RowWindows windows = {});
 
 // lr_check.cpp: the right view's winners of one row from its total S (D per pixel), with
 // rightIndexScratchSize() uint16 of scratch; and the check of one row.
