@@ -20,6 +20,16 @@ namespace cpu {
 
 inline int pathSlot(int numDisparities) { return numDisparities + 2; }
 
+// The search windows of one row (Parameters::gatedSearch, search_windows.hpp): pixel x searches
+// disparity indices [first[x], first[x] + count[x]). Null pointers: every pixel the whole range.
+// A gated pixel's path slots hold the sentinel outside its window, so that the next pixel on the
+// path reads the terms of Eq. 1 outside it as absent (gated_stages.hpp), and the kernels step
+// and select over the window only.
+struct RowWindows {
+  const std::int16_t* first = nullptr;
+  const std::int16_t* count = nullptr;
+};
+
 // census.cpp: one row of the census transform (cpu_ref's bit order, border pixels repeated).
 void censusTransformRow(ImageView<const std::uint8_t> image, CensusType type, int y, std::uint64_t* out);
 void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, int y, std::uint64_t* out);
@@ -28,10 +38,11 @@ void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, i
 // reverse order from index `pad`, zero-padded by `pad` on both sides (planeStride = width + 2 pad).
 int censusPlanePad(int minDisparity, int numDisparities);
 void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride);
-// C_S for pixels x0 .. x1-1 of one row into cost[(x - x0) * D + d].
+// C_S for pixels x0 .. x1-1 of one row into cost[(x - x0) * D + d]; with `windows` only the d of
+// each pixel's window (the other entries are left as they were).
 void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
                    CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
-                   std::uint8_t* cost);
+                   std::uint8_t* cost, RowWindows windows = {});
 
 // C_S fused at once with C_L (Eq. 5) as in fuseCosts: `lidar` holds C_L (D per pixel from x0)
 // of the pixels marked in `touched` (per pixel from x = 0); the others have C_L = 0, or keep C_S
@@ -47,7 +58,7 @@ struct CostFusion {
 void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
                         const std::uint8_t* lidar, const std::uint8_t* touched, const std::uint16_t* weights,
-                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost);
+                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost, RowWindows windows = {});
 
 // vertical_census_cost.cpp: Triple-SGM C_V for pixels x0 .. x1-1 of row y.
 void verticalCensusCostRow(const std::uint64_t* leftRow, ImageView<const std::uint64_t> upCensus, int y, int x0,
@@ -69,16 +80,6 @@ void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched);
 // fusion.cpp: Eq. 5 over n bytes: (w * C_L + (256 - w) * C_S + 128) >> 8.
 void fuseCostRow(const std::uint8_t* lidar, const std::uint8_t* stereo, std::size_t n, int alphaWeight256,
                  std::uint8_t* fused);
-
-// The search windows of one row (Parameters::gatedSearch, search_windows.hpp): pixel x searches
-// disparity indices [first[x], first[x] + count[x]). Null pointers: every pixel the whole range.
-// A gated pixel's path slots hold the sentinel outside its window, so that the next pixel on the
-// path reads the terms of Eq. 1 outside it as absent (gated_stages.hpp), and the kernels step
-// and select over the window only.
-struct RowWindows {
-  const std::int16_t* first = nullptr;
-  const std::int16_t* count = nullptr;
-};
 
 // aggregation.cpp. Path rows hold uint8 when pathCostsFit8Bits(largest matching cost, P2),
 // else uint16 (see aggregation.cpp); each kernel has both.
