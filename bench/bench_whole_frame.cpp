@@ -62,11 +62,15 @@ WholeFrame loadKitti2015LidarFrame(const std::string& dataRoot, const std::strin
   return frame;
 }
 
-WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, int threads, float scale,
+WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
                                         const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups) {
   Densifier densifier;  // the tools' defaults: DensifierConfig as constructed
   densifier.setBackend(backend);
+  const int threads = matcher.threads;
   densifier.parameters().threads = threads;
+  densifier.parameters().gatedSearch = matcher.gatedSearch;
+  densifier.parameters().gatedSearchMargin = matcher.gatedSearchMargin;
+  densifier.parameters().gatedSearchRows = matcher.gatedSearchRows;
   densifier.parameters().scale = scale;
   densifier.setCalibration(frame.calibration);
   densifier.setStereoPair(frame.pair.left.view(), frame.pair.right.view());

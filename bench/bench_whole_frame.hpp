@@ -48,10 +48,10 @@ struct WholeFrameMeasurement {
   MatchMode mode = MatchMode::Fused;
 };
 
-/// `runs` pairs after `warmups`: one Densifier frame (defaults, fused, `backend`, `threads`
-/// threads, `scale`), then one cv::StereoSGBM::compute with `sgbm` on `sgbmPair` (the pair at
-/// the scale matched) and `threads` threads. Throws std::logic_error if a frame is not fused.
-WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, int threads, float scale,
+/// `runs` pairs after `warmups`: one Densifier frame (defaults, fused, `backend`, `scale`, and
+/// `matcher`'s threads and gated search), then one cv::StereoSGBM::compute with `sgbm` on `sgbmPair`
+/// (the pair at the scale matched) with as many threads. Throws std::logic_error if a frame is not fused.
+WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
                                         const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups);
 
 }  // namespace bench

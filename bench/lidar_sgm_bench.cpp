@@ -54,6 +54,7 @@ struct Options {
   int warmups = kDefaultWarmups;
   int numDisparities = 128;
   int paths = 4;
+  Parameters gate;  ///< its gatedSearch, gatedSearchMargin and gatedSearchRows: every configuration's
   std::vector<std::string> configs;  ///< keys of the configurations to run; empty: all
   bool synthetic = false;
   int width = 1242;   ///< of the synthetic frame
@@ -90,6 +91,8 @@ void printUsage(const char* program) {
       "                          densifier,densifier_half (default: all, or with -kitti_frame those two)\n"
       "  -num_disparities N      (default 128)\n"
       "  -paths 4|8              SGM paths of every configuration but paths8 (default 4)\n"
+      "  -gated_search [-gated_search_margin M -gated_search_rows R]   every configuration with the\n"
+      "                          LiDAR-gated search (Parameters::gatedSearch; default off, M 8, R 6)\n"
       "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n"
       "  -h, --help              this help\n"
       "  --version               the tool's name and version\n"
@@ -111,8 +114,9 @@ std::vector<std::string> splitCommas(const std::string& list) {
 apps::Arguments parseArguments(int argc, char** argv) {
   return apps::Arguments(argc, argv,
                          {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
-                          "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame"},
-                         {"synthetic", "growth"});
+                          "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame",
+                          "gated_search_margin", "gated_search_rows"},
+                         {"synthetic", "growth", "gated_search"});
 }
 
 Options optionsFrom(const apps::Arguments& args) {
@@ -138,6 +142,9 @@ Options optionsFrom(const apps::Arguments& args) {
   o.kittiFrame = args.text("kitti_frame", o.kittiFrame);
   o.synthetic = args.has("synthetic");
   o.growth = args.has("growth");
+  o.gate.gatedSearch = args.has("gated_search");
+  o.gate.gatedSearchMargin = args.integer("gated_search_margin", o.gate.gatedSearchMargin);
+  o.gate.gatedSearchRows = args.integer("gated_search_rows", o.gate.gatedSearchRows);
   if (o.runs < 1) throw std::invalid_argument("-runs must be at least 1");
   if (o.warmups < 0) throw std::invalid_argument("-warmups must be at least 0");
   if (o.width < 16 || o.height < 16) throw std::invalid_argument("-width and -height must be at least 16");
@@ -292,6 +299,12 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
                 base.numDisparities, base.minDisparity);
   }
   std::printf("  paths:        %d (8 in the \"fused, 8 paths\" row)\n", base.paths);
+  if (base.gatedSearch) {
+    std::printf("  search:       LiDAR-gated (-gated_search_margin %d -gated_search_rows %d); stereo-only: the full range\n",
+                base.gatedSearchMargin, base.gatedSearchRows);
+  } else {
+    std::printf("  search:       the full range at every pixel (no -gated_search)\n");
+  }
   std::printf("  mode:         ");
   for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());
   if (configs.empty()) std::printf("the whole frame only (below)");
@@ -466,7 +479,7 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
       sgbmPair = resizedFrame(whole.pair, (whole.pair.width() + 1) / 2, (whole.pair.height() + 1) / 2);
     }
     const WholeFrameMeasurement m =
-        measureWholeFrame(whole, backend, base.threads, scale, sgbmPair, sgbm, o.runs, o.warmups);
+        measureWholeFrame(whole, backend, base, scale, sgbmPair, sgbm, o.runs, o.warmups);
     const double peak = peakRssMiB();
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %d | %s | %s (%s, %d disp.) | %.2f [%.2f, %.2f] |\n",
                 config.first.c_str(), ms(m.frameMs).c_str(), ms(m.projectMs).c_str(), ms(m.matchMs).c_str(),
@@ -522,6 +535,9 @@ int run(const Options& o) {
   base.numDisparities = o.numDisparities;
   base.paths = o.paths;
   base.threads = o.threads;
+  base.gatedSearch = o.gate.gatedSearch;
+  base.gatedSearchMargin = o.gate.gatedSearchMargin;
+  base.gatedSearchRows = o.gate.gatedSearchRows;
   validate(base);
   const std::vector<Config> configs =
       matcherConfigs ? selectConfigs(allConfigs(base, frame), matcherKeys) : std::vector<Config>{};

@@ -140,6 +140,13 @@ std::string rangeText(const GroupRunOptions& run) {
   return "from each frame's LiDAR (without LiDAR: " + fixed + ")";
 }
 
+/// Which disparities each pixel searches (Parameters::gatedSearch).
+std::string searchText(const Parameters& matcher) {
+  if (!matcher.gatedSearch) return "the whole range at every pixel";
+  return "LiDAR-gated (-gated_search, margin " + std::to_string(matcher.gatedSearchMargin) + " px, +-" +
+         std::to_string(matcher.gatedSearchRows) + " rows; the whole range where no point is and without LiDAR)";
+}
+
 /// What the run will do, before it loads anything: it takes minutes, so it never starts unseen.
 void printPlan(const GroupSelection& selection, const std::string& out, const GroupRunOptions& run, bool pictures) {
   const auto has = [](const std::vector<std::string>& items, const char* item) {
@@ -170,6 +177,7 @@ void printPlan(const GroupSelection& selection, const std::string& out, const Gr
   std::printf("  matcher:   backend %s, scale %g, alpha mode %s, %d threads in all, disparity range %s\n",
               toString(resolve(run.config.backend)).c_str(), run.config.matcher.scale,
               toString(run.config.matcher.alphaMode).c_str(), run.threads, rangeText(run).c_str());
+  std::printf("  search:    %s\n", searchText(run.config.matcher).c_str());
   std::printf("  outputs:   %s/results.md, %s/results.json, %s/plots/%s\n", out.c_str(), out.c_str(), out.c_str(),
               pictures ? (", " + out + "/pictures/").c_str() : "");
   std::fflush(stdout);
@@ -251,6 +259,7 @@ int run(int argc, char** argv) {
                 base.scale == 1.0f ? " (full resolution)" : " (half resolution, disparities brought back to full)",
                 toString(base.alphaMode).c_str(), (rangeText(runOptions) + "; per frame in results.json").c_str());
   markdown += settings;
+  markdown += "Disparity search: " + searchText(runOptions.config.matcher) + ".\n";
   for (const FrameGroup& g : groups) {
     if (g.frames.empty()) continue;
     apps::Timer timer;

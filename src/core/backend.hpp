@@ -63,6 +63,10 @@ class MatcherBackend {
   /// that the core does not: a backend that keeps the frame in its own memory or threads.
   virtual bool computesConfidence() const { return false; }
 
+  /// Whether the backend implements the LiDAR-gated search (Parameters::gatedSearch); if not,
+  /// the facade refuses the option for it.
+  virtual bool searchesGatedWindows() const { return false; }
+
   /// Whether the backend takes frames in device memory (the functions below); if not, the
   /// facade refuses computeOnDevice and never calls them.
   virtual bool readsDeviceMemory() const { return false; }

@@ -41,6 +41,10 @@ struct FramePlan {
   /// has no such witness and drops them.
   bool lrCheckTrustsLidar = false;
 
+  /// Each pixel searches its LiDAR window only (Parameters::gatedSearch, lidarSearchWindows):
+  /// with LiDAR points (fused, LiDAR-only); a stereo-only frame keeps the full range.
+  bool gatedSearch = false;
+
   bool confidence = false;    ///< the backend computes the peak-ratio margin and S1
   bool confidenceLr = false;  ///< ... and the left-right difference (there is no right view in LiDAR-only mode)
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "core/backend_registry.hpp"
@@ -24,6 +25,14 @@ void copyDisparity(MatcherBackend& backend, ImageView<const std::int16_t> host, 
   for (int y = 0; y < host.height; ++y) std::copy(host.row(y), host.row(y) + host.width, disparity.row(y));
 }
 
+// No silent fallback to the full search: a backend without the gated search refuses the option.
+void checkBackendSupports(const MatcherBackend& backend, const Parameters& params) {
+  if (params.gatedSearch && !backend.searchesGatedWindows()) {
+    throw std::invalid_argument("invalid parameter gatedSearch (-gated_search): backend " + toString(backend.backend()) +
+                                " does not implement the gated search; use backend cpu or cpu_ref");
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<Matcher> Matcher::create(Backend backend, const Parameters& params) {
@@ -31,6 +40,7 @@ std::unique_ptr<Matcher> Matcher::create(Backend backend, const Parameters& para
   auto impl = std::make_unique<Impl>();
   impl->params = params;
   impl->backend = detail::createBackend(backend);
+  checkBackendSupports(*impl->backend, params);
   return std::unique_ptr<Matcher>(new Matcher(std::move(impl)));
 }
 
@@ -44,6 +54,7 @@ const Parameters& Matcher::parameters() const { return impl_->params; }
 
 void Matcher::setParameters(const Parameters& params) {
   validate(params);
+  checkBackendSupports(*impl_->backend, params);
   impl_->params = params;
 }
 

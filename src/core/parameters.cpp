@@ -51,6 +51,12 @@ std::string validationError(const Parameters& p) {
   if (p.lidarCoverageRows < 1 || p.lidarCoverageRows > 64) {
     return rangeError("lidarCoverageRows", p.lidarCoverageRows, "in [1, 64]");
   }
+  if (p.gatedSearchMargin < 0 || p.gatedSearchMargin > 512) {
+    return rangeError("gatedSearchMargin", p.gatedSearchMargin, "in [0, 512] px");
+  }
+  if (p.gatedSearchRows < 0 || p.gatedSearchRows > 64) {
+    return rangeError("gatedSearchRows", p.gatedSearchRows, "in [0, 64]");
+  }
   if (p.medianSize != 0 && p.medianSize != 3 && p.medianSize != 5) {
     return rangeError("medianSize", p.medianSize, "0 (off), 3 or 5");
   }

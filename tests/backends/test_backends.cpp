@@ -9,12 +9,14 @@
 #include <random>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <type_traits>
 #include <vector>
 
 #include "backend_test_scenes.hpp"
+#include "backends/common/lidar_search_windows.hpp"
 #include "backends/common/lidar_weights.hpp"
 #include "backends/common/stages.hpp"
 #include "lidar_sgm/core/matcher.hpp"
@@ -475,6 +477,29 @@ std::vector<FrameCase> frameCases() {
        [](Parameters& p) { p.numDisparities = 64; p.scale = 0.5f; p.alphaMode = AlphaMode::Adaptive; }},
       {"HalfScaleStereo16Bit", 133, 63, 16, "stereo",
        [](Parameters& p) { p.numDisparities = 64; p.minDisparity = 4; p.scale = 0.5f; }},
+      // The LiDAR-gated search (gated_stages.hpp): windows from the scene's points.
+      {"GatedFused631x479", 631, 479, 8, "fused", [](Parameters& p) { p.gatedSearch = true; }},
+      {"GatedLidar", 131, 61, 8, "lidar", [](Parameters& p) { p.numDisparities = 64; p.gatedSearch = true; }},
+      {"GatedStereoIsNotGated", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.gatedSearch = true; }},
+      {"GatedNarrowWindows", 97, 41, 8, "fused",
+       [](Parameters& p) {
+         p.numDisparities = 64; p.minDisparity = 9; p.gatedSearch = true; p.gatedSearchMargin = 0; p.gatedSearchRows = 1;
+       }},
+      {"GatedEightPaths", 131, 61, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 64; p.paths = 8; p.gatedSearch = true; p.gatedSearchMargin = 2; }},
+      {"GatedLargePenaltiesAndCap", 131, 61, 8, "fused",
+       [](Parameters& p) {
+         p.numDisparities = 64; p.P1 = 3000; p.P2 = 4000; p.lidarCostCap = 255; p.gatedSearch = true; p.gatedSearchMargin = 1;
+       }},
+      {"GatedUniquenessAndLrCheck", 99, 41, 8, "fused",
+       [](Parameters& p) {
+         p.numDisparities = 32; p.uniquenessRatio = 10; p.lrCheckWithLidar = true; p.lidarCoverageRows = 2;
+         p.gatedSearch = true; p.gatedSearchMargin = 3; p.gatedSearchRows = 2;
+       }},
+      {"GatedTripleFused16Bit", 131, 61, 16, "triple_fused",
+       [](Parameters& p) { p.numDisparities = 64; p.gatedSearch = true; p.gatedSearchMargin = 4; }},
+      {"GatedHalfScale", 131, 61, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 64; p.scale = 0.5f; p.gatedSearch = true; p.gatedSearchMargin = 2; }},
   };
   return cases;
 }
@@ -503,9 +528,27 @@ TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
   }
   const bool withLidar = c.mode == "lidar" || c.mode == "fused" || c.mode == "triple_fused";
   const LidarPoints* lidar = withLidar ? &scene.lidar : nullptr;
+  if (params.gatedSearch && withLidar && params.scale == 1.0f) {
+    // The gated cases must narrow the search somewhere, or they would test the whole range only.
+    SearchWindows windows;
+    lidarSearchWindows(scene.lidar, params.minDisparity, params.numDisparities, params.gatedSearchRows,
+                       params.gatedSearchMargin, windows);
+    int narrowed = 0;
+    for (int y = 0; y < c.height; ++y) {
+      for (int x = 0; x < c.width; ++x) narrowed += windows.count(x, y) < params.numDisparities ? 1 : 0;
+    }
+    EXPECT_GT(narrowed, c.width * c.height / 10) << "pixels with a window narrower than the range";
+  }
 
   auto reference = Matcher::create(Backend::CpuRef, params);
-  auto backend = Matcher::create(backendFromString(name), params);
+  std::unique_ptr<Matcher> backend;
+  try {
+    backend = Matcher::create(backendFromString(name), params);
+  } catch (const std::invalid_argument& e) {
+    // A backend without the gated search refuses it (tests/core/test_gated_search.cpp).
+    if (params.gatedSearch) GTEST_SKIP() << e.what();
+    throw;
+  }
   ASSERT_EQ(toString(backend->backend()), name);
   Image<std::int16_t> expected(c.width, c.height), actual(c.width, c.height);
   reference->compute(left, right, up, lidar, expected.view());
@@ -577,14 +620,20 @@ TEST(BackendReuse, OneMatcherThroughChangingFramesMatchesCpuRef) {
     std::unique_ptr<Matcher> backend;
     struct Step {
       int width, height, numDisparities, paths, P2, cap;
+      bool gated;  // the gated search's sentinels must not outlive its frames, nor be missing after others
     };
-    for (const Step& step : {Step{131, 61, 64, 4, 100, 62}, Step{97, 41, 32, 8, 100, 62}, Step{131, 61, 64, 8, 4000, 255},
-                             Step{64, 40, 16, 4, 100, 62}, Step{131, 61, 64, 4, 100, 62}}) {
+    for (const Step& step : {Step{131, 61, 64, 4, 100, 62, false}, Step{97, 41, 32, 8, 100, 62, true},
+                             Step{131, 61, 64, 8, 4000, 255, false}, Step{131, 61, 64, 8, 4000, 255, true},
+                             Step{64, 40, 16, 4, 100, 62, false}, Step{131, 61, 64, 4, 100, 62, true},
+                             Step{131, 61, 64, 4, 100, 62, false}}) {
+      if (step.gated && name == "cuda") continue;  // cuda refuses the gated search
       Parameters params;
       params.numDisparities = step.numDisparities;
       params.paths = step.paths;
       params.P2 = step.P2;
       params.lidarCostCap = step.cap;
+      params.gatedSearch = step.gated;
+      params.gatedSearchMargin = 2;
       params.threads = 2;
       if (!backend) {
         backend = Matcher::create(backendFromString(name), params);
@@ -597,7 +646,8 @@ TEST(BackendReuse, OneMatcherThroughChangingFramesMatchesCpuRef) {
                                                         expected.view());
       backend->compute(scene.left8.view(), scene.right8.view(), &scene.lidar, actual.view());
       EXPECT_TRUE(sameImages(expected, actual)) << name << " " << step.width << "x" << step.height << " D "
-                                                << step.numDisparities << " paths " << step.paths;
+                                                << step.numDisparities << " paths " << step.paths
+                                                << (step.gated ? " gated" : "");
     }
   }
 }

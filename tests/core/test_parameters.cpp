@@ -69,6 +69,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadParameter{"uniquenessRatio", [](Parameters& p) { p.uniquenessRatio = 100; }, "[0, 99]"},
         BadParameter{"disp12MaxDiff", [](Parameters& p) { p.disp12MaxDiff = -1; }, "[0, numDisparities (128)]"},
         BadParameter{"lidarCoverageRows", [](Parameters& p) { p.lidarCoverageRows = 0; }, "[1, 64]"},
+        BadParameter{"gatedSearchMargin", [](Parameters& p) { p.gatedSearchMargin = -1; }, "[0, 512] px"},
+        BadParameter{"gatedSearchMargin", [](Parameters& p) { p.gatedSearchMargin = 513; }, "[0, 512] px"},
+        BadParameter{"gatedSearchRows", [](Parameters& p) { p.gatedSearchRows = 65; }, "[0, 64]"},
         BadParameter{"medianSize", [](Parameters& p) { p.medianSize = 7; }, "0 (off), 3 or 5"}),
     [](const ::testing::TestParamInfo<BadParameter>& paramInfo) {
       return std::string(paramInfo.param.name) + std::to_string(paramInfo.index);

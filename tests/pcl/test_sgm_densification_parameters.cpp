@@ -39,7 +39,7 @@ constexpr std::size_t fieldCount() {
 // A new field of the configuration is compared below (and gets an entry in the option table,
 // config_options.cpp, when a front end sets it).
 static_assert(fieldCount<DensifierConfig>() == 13, "DensifierConfig changed: compare the new field here");
-static_assert(fieldCount<Parameters>() == 21, "Parameters changed: compare the new field here");
+static_assert(fieldCount<Parameters>() == 24, "Parameters changed: compare the new field here");
 static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: compare it here");
 static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: compare it here");
 static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: compare it here");
@@ -61,6 +61,9 @@ void expectEqual(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.lrCheckWithLidar, b.lrCheckWithLidar);
   EXPECT_EQ(a.disp12MaxDiff, b.disp12MaxDiff);
   EXPECT_EQ(a.lidarCoverageRows, b.lidarCoverageRows);
+  EXPECT_EQ(a.gatedSearch, b.gatedSearch);
+  EXPECT_EQ(a.gatedSearchMargin, b.gatedSearchMargin);
+  EXPECT_EQ(a.gatedSearchRows, b.gatedSearchRows);
   EXPECT_EQ(a.medianSize, b.medianSize);
   EXPECT_EQ(a.subpixel, b.subpixel);
   EXPECT_EQ(a.censusType, b.censusType);

@@ -63,7 +63,7 @@ TEST(ConfigOptions, EachOptionSetsItsOwnSettingAndNothingElse) {
     EXPECT_NE(value, defaults.at(o.name)) << "the option changed nothing";
     EXPECT_EQ(values(c), expected);
   }
-  EXPECT_EQ(names.size(), 39u);  // the table as documented in docs/LIBRARY.md
+  EXPECT_EQ(names.size(), 42u);  // the table as documented in docs/LIBRARY.md
   EXPECT_EQ(findDensifierOption("nonsense"), nullptr);
 }
 
@@ -112,6 +112,9 @@ TEST(ConfigOptions, ABadValueOrNameIsRefusedNamingIt) {
       {{{"stride", "0"}}, "option -stride: must be >= 1"},
       {{{"max_depth", "-1"}}, "option -max_depth: must be >= 0 [m] (0 = keep all)"},
       {{{"alpha", "1.5"}}, "invalid parameter alpha = 1.5: must be in [0, 1]"},
+      {{{"gated_search_margin", "-1"}}, "invalid parameter gatedSearchMargin = -1: must be in [0, 512] px"},
+      {{{"gated_search_rows", "65"}}, "invalid parameter gatedSearchRows = 65: must be in [0, 64]"},
+      {{{"gated_search_rows", "six"}}, "option -gated_search_rows: 'six' is not an integer"},
       {{{"min_confidence", "2"}}, "option -min_confidence: 2 must be in [0, 1]"},
       {{{"outlier_min_neighbours", "99"}}, "minNeighbours"},
       {{{"bogus", "1"}}, "unknown option -bogus"},

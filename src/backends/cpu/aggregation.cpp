@@ -111,19 +111,36 @@ HWY_INLINE unsigned PathStart(const std::uint8_t* HWY_RESTRICT cost, T* HWY_REST
   return minimum;
 }
 
+// The first disparity index and the number of disparities pixel x searches (the whole range
+// without windows). A gated pixel's slot is reset to the sentinel first: the next pixel on the path
+// must read the entries outside this pixel's window as absent (gated_stages.hpp).
+template <typename T>
+HWY_INLINE T* WindowOfSlot(T* slotValues, const std::int16_t* first, const std::int16_t* count, int x, int D,
+                           int& windowFirst, int& windowCount) {
+  windowFirst = first == nullptr ? 0 : first[x];
+  windowCount = first == nullptr ? D : count[x];
+  if (windowCount < D) std::fill(slotValues, slotValues + D, pathSentinel<T>());
+  return slotValues + windowFirst;
+}
+
 template <typename T>
 void PathRowFromPreviousT(const std::uint8_t* costRow, int costX0, const T* previous, const std::uint16_t* previousMin,
-                          int dx, int width, int x0, int x1, int D, int P1, int P2, T* out, std::uint16_t* outMin) {
+                          int dx, int width, int x0, int x1, int D, int P1, int P2, T* out, std::uint16_t* outMin,
+                          const std::int16_t* first, const std::int16_t* count) {
   const int slot = pathSlot(D);
   for (int x = x0; x < x1; ++x) {
-    const std::uint8_t* c = costRow + static_cast<std::size_t>(x - costX0) * D;
-    T* L = out + static_cast<std::size_t>(x) * slot + 1;
+    int f = 0;
+    int n = D;
+    T* L = WindowOfSlot(out + static_cast<std::size_t>(x) * slot + 1, first, count, x, D, f, n);
+    const std::uint8_t* c = costRow + static_cast<std::size_t>(x - costX0) * D + f;
     const int px = x - dx;
     if (previous == nullptr || px < 0 || px >= width) {
-      outMin[x] = static_cast<std::uint16_t>(PathStart(c, L, D));
+      outMin[x] = static_cast<std::uint16_t>(PathStart(c, L, n));
     } else {
+      // The previous slot from the same disparity on: its entries outside its own window are
+      // sentinels, and its ends (slot[0], slot[D + 1]) too.
       outMin[x] = static_cast<std::uint16_t>(
-          PathStep(c, previous + static_cast<std::size_t>(px) * slot + 1, previousMin[px], L, D, P1, P2));
+          PathStep(c, previous + static_cast<std::size_t>(px) * slot + 1 + f, previousMin[px], L, n, P1, P2));
     }
   }
 }
@@ -144,20 +161,26 @@ void PathRowHorizontalT(const std::uint8_t* costRow, int dx, int width, int D, i
 // x = width - 1 - j. Each walk is one long dependency chain (a pixel needs its predecessor's
 // minimum); interleaving two independent chains keeps the vector units busy.
 template <typename T>
-void PathRowsHorizontalT(const std::uint8_t* costRow, int width, int D, int P1, int P2, T* rightward, T* leftward) {
+void PathRowsHorizontalT(const std::uint8_t* costRow, int width, int D, int P1, int P2, T* rightward, T* leftward,
+                         const std::int16_t* first, const std::int16_t* count) {
   const int slot = pathSlot(D);
   const auto at = [&](T* row, int x) { return row + static_cast<std::size_t>(x) * slot + 1; };
   const auto cost = [&](int x) { return costRow + static_cast<std::size_t>(x) * D; };
-  unsigned minRight = PathStart(cost(0), at(rightward, 0), D);
-  unsigned minLeft = PathStart(cost(width - 1), at(leftward, width - 1), D);
+  int f = 0;
+  int n = D;
+  T* L = WindowOfSlot(at(rightward, 0), first, count, 0, D, f, n);
+  unsigned minRight = PathStart(cost(0) + f, L, n);
+  L = WindowOfSlot(at(leftward, width - 1), first, count, width - 1, D, f, n);
+  unsigned minLeft = PathStart(cost(width - 1) + f, L, n);
   for (int j = 1; j < width; ++j) {
     const int xr = j;
     const int xl = width - 1 - j;
-    minRight = PathStep(cost(xr), at(rightward, xr - 1), minRight, at(rightward, xr), D, P1, P2);
-    minLeft = PathStep(cost(xl), at(leftward, xl + 1), minLeft, at(leftward, xl), D, P1, P2);
+    L = WindowOfSlot(at(rightward, xr), first, count, xr, D, f, n);
+    minRight = PathStep(cost(xr) + f, at(rightward, xr - 1) + f, minRight, L, n, P1, P2);
+    L = WindowOfSlot(at(leftward, xl), first, count, xl, D, f, n);
+    minLeft = PathStep(cost(xl) + f, at(leftward, xl + 1) + f, minLeft, L, n, P1, P2);
   }
 }
-
 
 template <typename T>
 void StorePathSumT(const T* const* paths, int count, int x0, int x1, int D, std::uint8_t* stored8,
@@ -195,13 +218,14 @@ void AddPathRowT(const T* path, int x0, int x1, int D, std::uint16_t* sumRow) {
 
 // Exported, one per element type (dispatch tables hold plain functions).
 void PathRowFromPrevious8(const std::uint8_t* c, int cx0, const std::uint8_t* prev, const std::uint16_t* prevMin,
-                          int dx, int w, int x0, int x1, int D, int P1, int P2, std::uint8_t* out, std::uint16_t* outMin) {
-  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin);
+                          int dx, int w, int x0, int x1, int D, int P1, int P2, std::uint8_t* out, std::uint16_t* outMin,
+                          const std::int16_t* first, const std::int16_t* count) {
+  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin, first, count);
 }
 void PathRowFromPrevious16(const std::uint8_t* c, int cx0, const std::uint16_t* prev, const std::uint16_t* prevMin,
                            int dx, int w, int x0, int x1, int D, int P1, int P2, std::uint16_t* out,
-                           std::uint16_t* outMin) {
-  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin);
+                           std::uint16_t* outMin, const std::int16_t* first, const std::int16_t* count) {
+  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin, first, count);
 }
 void PathRowHorizontal8(const std::uint8_t* c, int dx, int w, int D, int P1, int P2, std::uint8_t* out) {
   PathRowHorizontalT(c, dx, w, D, P1, P2, out);
@@ -210,12 +234,12 @@ void PathRowHorizontal16(const std::uint8_t* c, int dx, int w, int D, int P1, in
   PathRowHorizontalT(c, dx, w, D, P1, P2, out);
 }
 void PathRowsHorizontal8(const std::uint8_t* c, int w, int D, int P1, int P2, std::uint8_t* right,
-                         std::uint8_t* left) {
-  PathRowsHorizontalT(c, w, D, P1, P2, right, left);
+                         std::uint8_t* left, const std::int16_t* first, const std::int16_t* count) {
+  PathRowsHorizontalT(c, w, D, P1, P2, right, left, first, count);
 }
 void PathRowsHorizontal16(const std::uint8_t* c, int w, int D, int P1, int P2, std::uint16_t* right,
-                          std::uint16_t* left) {
-  PathRowsHorizontalT(c, w, D, P1, P2, right, left);
+                          std::uint16_t* left, const std::int16_t* first, const std::int16_t* count) {
+  PathRowsHorizontalT(c, w, D, P1, P2, right, left, first, count);
 }
 void StorePathSum8(const std::uint8_t* const* paths, int count, int x0, int x1, int D, std::uint8_t* s8,
                    std::uint16_t* s16) {
@@ -256,15 +280,15 @@ bool pathCostsFit8Bits(int maxCost, int P2) { return maxCost + P2 <= 255; }
 
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint8_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
-                         int P1, int P2, std::uint8_t* out, std::uint16_t* outMin) {
+                         int P1, int P2, std::uint8_t* out, std::uint16_t* outMin, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(PathRowFromPrevious8)(costRow, costX0, previous, previousMin, dx, width, x0, x1, numDisparities,
-                                             P1, P2, out, outMin);
+                                             P1, P2, out, outMin, windows.first, windows.count);
 }
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint16_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
-                         int P1, int P2, std::uint16_t* out, std::uint16_t* outMin) {
+                         int P1, int P2, std::uint16_t* out, std::uint16_t* outMin, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(PathRowFromPrevious16)(costRow, costX0, previous, previousMin, dx, width, x0, x1,
-                                              numDisparities, P1, P2, out, outMin);
+                                              numDisparities, P1, P2, out, outMin, windows.first, windows.count);
 }
 void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
                        std::uint8_t* out) {
@@ -275,12 +299,14 @@ void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDi
   HWY_DYNAMIC_DISPATCH(PathRowHorizontal16)(costRow, dx, width, numDisparities, P1, P2, out);
 }
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
-                        std::uint8_t* rightward, std::uint8_t* leftward) {
-  HWY_DYNAMIC_DISPATCH(PathRowsHorizontal8)(costRow, width, numDisparities, P1, P2, rightward, leftward);
+                        std::uint8_t* rightward, std::uint8_t* leftward, RowWindows windows) {
+  HWY_DYNAMIC_DISPATCH(PathRowsHorizontal8)(costRow, width, numDisparities, P1, P2, rightward, leftward,
+                                            windows.first, windows.count);
 }
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
-                        std::uint16_t* rightward, std::uint16_t* leftward) {
-  HWY_DYNAMIC_DISPATCH(PathRowsHorizontal16)(costRow, width, numDisparities, P1, P2, rightward, leftward);
+                        std::uint16_t* rightward, std::uint16_t* leftward, RowWindows windows) {
+  HWY_DYNAMIC_DISPATCH(PathRowsHorizontal16)(costRow, width, numDisparities, P1, P2, rightward, leftward,
+                                             windows.first, windows.count);
 }
 void storePathSum(const std::uint8_t* const* paths, int count, int x0, int x1, int numDisparities,
                   std::uint8_t* stored8, std::uint16_t* stored16) {

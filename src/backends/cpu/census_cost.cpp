@@ -95,16 +95,20 @@ HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* plan
   }
 }
 
+// The costs of disparity indices [first, first + count) (count a multiple of 16): the whole range,
+// or a gated pixel's window (the entries outside it are never read).
 template <int kBytes, Fusion kFusion>
-HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int D, int dBegin,
-                          int dEnd, const std::uint8_t* lidar, int alphaWeight256, std::uint8_t* out) {
+HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int first,
+                          int count, int dBegin, int dEnd, const std::uint8_t* lidar, int alphaWeight256,
+                          std::uint8_t* out) {
   const hn::CappedTag<std::uint8_t, 32> d32;
   const hn::CappedTag<std::uint8_t, 16> d16;
   const int N = static_cast<int>(hn::Lanes(d32));
-  const int whole = D / N * N;
-  HammingPixel<kBytes, kFusion>(d32, left, planes, planeStride, 0, whole, dBegin, dEnd, lidar, alphaWeight256, out);
-  if (whole < D) {
-    HammingPixel<kBytes, kFusion>(d16, left, planes, planeStride, whole, D - whole, dBegin, dEnd, lidar,
+  const int whole = count / N * N;
+  HammingPixel<kBytes, kFusion>(d32, left, planes, planeStride, first, whole, dBegin, dEnd, lidar, alphaWeight256,
+                                out);
+  if (whole < count) {
+    HammingPixel<kBytes, kFusion>(d16, left, planes, planeStride, first + whole, count - whole, dBegin, dEnd, lidar,
                                   alphaWeight256, out);
   }
 }
@@ -113,35 +117,40 @@ HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::s
 template <int kBytes>
 void CensusCostRowBytes(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
-                        std::uint8_t* cost) {
+                        std::uint8_t* cost, const std::int16_t* windowFirst, const std::int16_t* windowCount) {
   for (int x = x0; x < x1; ++x) {
     std::uint8_t* c = cost + static_cast<std::size_t>(x - x0) * D;
+    const int first = windowFirst == nullptr ? 0 : windowFirst[x];
+    const int count = windowFirst == nullptr ? D : windowCount[x];
     // Plane index of d = 0: the right pixel xr = x - minDisparity sits at width - 1 - xr.
     const std::uint8_t* planes = rightPlanes + pad + (width - 1 - x + minDisparity);
     // Disparities whose right pixel lies inside the image: [dBegin, dEnd).
     const int dBegin = std::clamp(x - minDisparity - width + 1, 0, D);
     const int dEnd = std::clamp(x - minDisparity + 1, dBegin, D);
     if (fusion == nullptr || (fusion->touched[x] == 0 && fusion->stereoCostWithoutLidar)) {
-      CostPixel<kBytes, Fusion::None>(leftRow[x], planes, planeStride, D, dBegin, dEnd, nullptr, 0, c);
+      CostPixel<kBytes, Fusion::None>(leftRow[x], planes, planeStride, first, count, dBegin, dEnd, nullptr, 0, c);
       continue;
     }
     const int weight = fusion->weights != nullptr ? fusion->weights[x] : fusion->alphaWeight256;
     if (fusion->touched[x] != 0) {
-      CostPixel<kBytes, Fusion::WithLidar>(leftRow[x], planes, planeStride, D, dBegin, dEnd,
+      CostPixel<kBytes, Fusion::WithLidar>(leftRow[x], planes, planeStride, first, count, dBegin, dEnd,
                                            fusion->lidar + static_cast<std::size_t>(x - x0) * D, weight, c);
     } else {
-      CostPixel<kBytes, Fusion::ZeroLidar>(leftRow[x], planes, planeStride, D, dBegin, dEnd, nullptr, weight, c);
+      CostPixel<kBytes, Fusion::ZeroLidar>(leftRow[x], planes, planeStride, first, count, dBegin, dEnd, nullptr,
+                                           weight, c);
     }
   }
 }
 
 void CensusCostRowImpl(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                        int pad, int bytes, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
-                       std::uint8_t* cost) {
+                       std::uint8_t* cost, const std::int16_t* windowFirst, const std::int16_t* windowCount) {
   if (bytes == 8) {
-    CensusCostRowBytes<8>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost);
+    CensusCostRowBytes<8>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost,
+                          windowFirst, windowCount);
   } else {
-    CensusCostRowBytes<4>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost);
+    CensusCostRowBytes<4>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost,
+                          windowFirst, windowCount);
   }
 }
 
@@ -172,20 +181,20 @@ void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* pl
 
 void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
                    CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
-                   std::uint8_t* cost) {
+                   std::uint8_t* cost, RowWindows windows) {
   const int bytes = type == CensusType::Census9x7 ? 8 : 4;  // 62 or 31 bits
   HWY_DYNAMIC_DISPATCH(CensusCostRowImpl)(leftRow, rightPlanes, planeStride, pad, bytes, width, x0, x1, minDisparity,
-                                          numDisparities, nullptr, cost);
+                                          numDisparities, nullptr, cost, windows.first, windows.count);
 }
 
 void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
                         const std::uint8_t* lidar, const std::uint8_t* touched, const std::uint16_t* weights,
-                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost) {
+                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost, RowWindows windows) {
   const int bytes = type == CensusType::Census9x7 ? 8 : 4;
   const CostFusion fusion{lidar, touched, weights, alphaWeight256, stereoCostWithoutLidar};
   HWY_DYNAMIC_DISPATCH(CensusCostRowImpl)(leftRow, rightPlanes, planeStride, pad, bytes, width, x0, x1, minDisparity,
-                                          numDisparities, &fusion, cost);
+                                          numDisparities, &fusion, cost, windows.first, windows.count);
 }
 
 void censusCost(ImageView<const std::uint64_t> leftCensus, ImageView<const std::uint64_t> rightCensus,

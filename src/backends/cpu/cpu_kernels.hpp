@@ -20,6 +20,16 @@ namespace cpu {
 
 inline int pathSlot(int numDisparities) { return numDisparities + 2; }
 
+// The search windows of one row (Parameters::gatedSearch, search_windows.hpp): pixel x searches
+// disparity indices [first[x], first[x] + count[x]). Null pointers: every pixel the whole range.
+// A gated pixel's path slots hold the sentinel outside its window, so that the next pixel on the
+// path reads the terms of Eq. 1 outside it as absent (gated_stages.hpp), and the kernels step
+// and select over the window only.
+struct RowWindows {
+  const std::int16_t* first = nullptr;
+  const std::int16_t* count = nullptr;
+};
+
 // census.cpp: one row of the census transform (cpu_ref's bit order, border pixels repeated).
 void censusTransformRow(ImageView<const std::uint8_t> image, CensusType type, int y, std::uint64_t* out);
 void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, int y, std::uint64_t* out);
@@ -28,10 +38,11 @@ void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, i
 // reverse order from index `pad`, zero-padded by `pad` on both sides (planeStride = width + 2 pad).
 int censusPlanePad(int minDisparity, int numDisparities);
 void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride);
-// C_S for pixels x0 .. x1-1 of one row into cost[(x - x0) * D + d].
+// C_S for pixels x0 .. x1-1 of one row into cost[(x - x0) * D + d]; with `windows` only the d of
+// each pixel's window (the other entries are left as they were).
 void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
                    CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
-                   std::uint8_t* cost);
+                   std::uint8_t* cost, RowWindows windows = {});
 
 // C_S fused at once with C_L (Eq. 5) as in fuseCosts: `lidar` holds C_L (D per pixel from x0)
 // of the pixels marked in `touched` (per pixel from x = 0); the others have C_L = 0, or keep C_S
@@ -47,7 +58,7 @@ struct CostFusion {
 void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
                         const std::uint8_t* lidar, const std::uint8_t* touched, const std::uint16_t* weights,
-                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost);
+                        int alphaWeight256, bool stereoCostWithoutLidar, std::uint8_t* cost, RowWindows windows = {});
 
 // vertical_census_cost.cpp: Triple-SGM C_V for pixels x0 .. x1-1 of row y.
 void verticalCensusCostRow(const std::uint64_t* leftRow, ImageView<const std::uint64_t> upCensus, int y, int x0,
@@ -89,10 +100,10 @@ std::vector<T> pathRowBuffer(int width, int numDisparities) {
 // costX0 on.
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint8_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
-                         int P1, int P2, std::uint8_t* out, std::uint16_t* outMin);
+                         int P1, int P2, std::uint8_t* out, std::uint16_t* outMin, RowWindows windows = {});
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint16_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
-                         int P1, int P2, std::uint16_t* out, std::uint16_t* outMin);
+                         int P1, int P2, std::uint16_t* out, std::uint16_t* outMin, RowWindows windows = {});
 // Eq. 1 along the row itself: dx = +1 (left to right) or -1 (right to left), whole row.
 void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
                        std::uint8_t* out);
@@ -100,9 +111,9 @@ void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDi
                        std::uint16_t* out);
 // Both: left to right into `rightward`, right to left into `leftward`, interleaved.
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
-                        std::uint8_t* rightward, std::uint8_t* leftward);
+                        std::uint8_t* rightward, std::uint8_t* leftward, RowWindows windows = {});
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
-                        std::uint16_t* rightward, std::uint16_t* leftward);
+                        std::uint16_t* rightward, std::uint16_t* leftward, RowWindows windows = {});
 // The sum of `count` path rows for x0 .. x1-1 into a stored row (D per pixel, indexed from x0)
 // of either type (the other nullptr); the caller guarantees the sum fits.
 void storePathSum(const std::uint8_t* const* paths, int count, int x0, int x1, int numDisparities,
@@ -132,14 +143,16 @@ struct WinnerExtras {
   /// it then stays in the L1 cache instead of streaming a whole row of S through it.
   bool pixelTotal = false;
 };
+/// With `windows`, S, the winner, the right view's bids and the margin run over each pixel's
+/// window (gated_stages.hpp); `total` then holds the window's S from its first entry.
 void sumSelectRow(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr);
+                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr, RowWindows windows = {});
 void sumSelectRow(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr);
+                  std::int16_t* bestIndex, const WinnerExtras* extras = nullptr, RowWindows windows = {});
 
 // lr_check.cpp: the right view's winners of one row from its total S (D per pixel), with
 // rightIndexScratchSize() uint16 of scratch; and the check of one row.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <utility>
 
+#include "backends/common/lidar_search_windows.hpp"
 #include "backends/common/lidar_weights.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
@@ -53,6 +54,12 @@ void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std
   f.rowSlots = static_cast<std::size_t>(plan.width) * pathSlot(plan.D);
   if (plan.useCameras()) censusImages(f, in);
   if (plan.useLidar) lidarPixels(f);
+  if (plan.gatedSearch) {
+    // The LiDAR gate (shared with cpu_ref): the sweeps step and select over these windows only.
+    lidarSearchWindows(*in.lidar, plan.minDisparity, plan.D, plan.params.gatedSearchRows,
+                       plan.params.gatedSearchMargin, windows_);
+    f.windows = &windows_;
+  }
   out.timings.census = msSince(start);
   runStages(f, disparity);
 }

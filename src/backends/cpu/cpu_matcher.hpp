@@ -30,6 +30,8 @@
 
 #include "backends/common/cost_volume.hpp"
 #include "backends/common/lidar_cost_table.hpp"
+#include "backends/common/search_windows.hpp"
+#include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/huge_buffer.hpp"
 #include "core/backend.hpp"
@@ -40,6 +42,7 @@ namespace cpu {
 class CpuMatcher final : public MatcherBackend {
  public:
   Backend backend() const override { return Backend::Cpu; }
+  bool searchesGatedWindows() const override { return true; }
   void run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
            FrameResults& out) override;
   /// The confidence's core part runs here too, with the backend's threads (confidence.cpp).
@@ -53,6 +56,8 @@ class CpuMatcher final : public MatcherBackend {
     FrameResults& out;
     GrayImageView left;  // empty in LiDAR-only mode (the confidence reads no image there)
     const LidarPoints* lidar = nullptr;
+    /// The gated search's windows (Parameters::gatedSearch); null: every pixel the whole range.
+    const SearchWindows* windows = nullptr;
     int threads = 1;
     int verticalPaths = 1;       // per sweep: 1 with 4 paths, 3 with 8
     bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
@@ -122,6 +127,8 @@ class CpuMatcher final : public MatcherBackend {
   void lidarCostRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* lidar);
   void tripleCostRange(const Frame& frame, int y, int x0, int x1, const std::uint8_t* lidar, std::uint8_t* cost,
                        Worker& worker, Lap& lap);
+  /// Row y's search windows for the row kernels (none without the gated search).
+  static RowWindows rowWindows(const Frame& frame, int y);
   // After the sweeps (cpu_matcher.cpp).
   void leftRightCheck(const Frame& frame);
   /// The confidence and the inputs the core would compute (the facade's computeConfidence), from
@@ -145,6 +152,7 @@ class CpuMatcher final : public MatcherBackend {
   std::vector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row
   std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
+  SearchWindows windows_;  // the gated search's windows (Parameters::gatedSearch)
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;
   Image<std::int16_t> rightIndex_;

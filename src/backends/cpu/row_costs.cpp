@@ -27,12 +27,13 @@ void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* 
   const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
   if (plan.mode == MatchMode::Fused) {
     const std::uint16_t* weights = plan.adaptiveAlpha ? lidarWeights_.view().row(y) : nullptr;
+    // With the gated search, only the windows' costs: nothing reads the others.
     censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1,
                        plan.minDisparity, plan.D, lidar, touched_.view().row(y), weights, plan.alphaWeight,
-                       p.stereoCostWithoutLidar, cost);
+                       p.stereoCostWithoutLidar, cost, rowWindows(f, y));
   } else {
     censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1, plan.minDisparity,
-                  plan.D, cost);
+                  plan.D, cost, rowWindows(f, y));
   }
   lap(w.censusCostMs);
 }

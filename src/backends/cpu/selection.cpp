@@ -79,10 +79,13 @@ void SelectRowImpl(const std::uint16_t* total, int x0, int x1, int D, int minDis
 
 // Eq. 2 straight from the paths: per pixel the sum over paths (written to total, which stays in
 // the L1 cache for the winner search), its minimum on the fly, then the selection and `extras`.
+// With windows (first != nullptr) all of it runs on the pixel's window: S from its first entry,
+// the winner's index and the bids shifted back to the whole range (gated_stages.hpp).
 template <typename T>
 void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8, const std::uint16_t* stored16,
                    int x0, int x1, int D, int minDisparity, int uniquenessRatio, bool subpixel, std::uint16_t* total,
-                   std::int16_t* disparity16, std::int16_t* bestIndex, const WinnerExtras* extras) {
+                   std::int16_t* disparity16, std::int16_t* bestIndex, const WinnerExtras* extras,
+                   const std::int16_t* first, const std::int16_t* windowCount) {
   const D16 d16;
   const int N = static_cast<int>(hn::Lanes(d16));
   const int slot = pathSlot(D);
@@ -93,11 +96,13 @@ void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8
     bids.emplace(extras->rightScratch, extras->width, D, minDisparity);
   }
   for (int x = x0; x < x1; ++x) {
-    const std::size_t local = static_cast<std::size_t>(x - x0) * D;
-    const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1;
+    const int f = first == nullptr ? 0 : first[x];
+    const int n = first == nullptr ? D : windowCount[x];
+    const std::size_t local = static_cast<std::size_t>(x - x0) * D + f;
+    const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1 + f;
     std::uint16_t* S = pixelTotal ? total : total + local;
     auto minimum = hn::Set(d16, std::uint16_t{0xFFFF});
-    for (int i = 0; i < D; i += N) {
+    for (int i = 0; i < n; i += N) {
       auto sum = stored8 != nullptr    ? LoadAsU16(stored8 + local + i)
                  : stored16 != nullptr ? hn::LoadU(d16, stored16 + local + i)
                                        : hn::Zero(d16);
@@ -107,16 +112,18 @@ void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8
     }
     const auto target = hn::MinOfLanes(d16, minimum);
     int best = 0;
-    for (int i = 0; i < D; i += N) {
+    for (int i = 0; i < n; i += N) {
       const intptr_t lane = hn::FindFirstTrue(d16, hn::Eq(hn::LoadU(d16, S + i), target));
       if (lane >= 0) {
         best = i + static_cast<int>(lane);
         break;
       }
     }
-    SelectPixel(S, best, x, D, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex);
-    if (margin) PeakRatioMarginPixel(S, D, bestIndex[x], extras->margin + x, extras->bestCost + x);
-    if (bids) bids->bid(S, x, D);
+    // On the window: index 0 is disparity index f, so the window's edges are the parabola's.
+    SelectPixel(S, best, x, n, minDisparity + f, uniquenessRatio, subpixel, disparity16, bestIndex);
+    if (margin) PeakRatioMarginPixel(S, n, bestIndex[x], extras->margin + x, extras->bestCost + x);
+    if (bestIndex[x] >= 0) bestIndex[x] = static_cast<std::int16_t>(bestIndex[x] + f);
+    if (bids) bids->bid(S, x, n, f);
   }
   if (bids) bids->winners(extras->rightIndex);
 }
@@ -124,16 +131,16 @@ void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8
 void SumSelectRow8(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                    const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
                    bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
-                   const WinnerExtras* extras) {
+                   const WinnerExtras* extras, const std::int16_t* first, const std::int16_t* windowCount) {
   SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                disparity16, bestIndex, extras);
+                disparity16, bestIndex, extras, first, windowCount);
 }
 void SumSelectRow16(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                     const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
                     bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
-                   const WinnerExtras* extras) {
+                   const WinnerExtras* extras, const std::int16_t* first, const std::int16_t* windowCount) {
   SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                disparity16, bestIndex, extras);
+                disparity16, bestIndex, extras, first, windowCount);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -158,16 +165,18 @@ void selectRow(const std::uint16_t* total, int x0, int x1, int numDisparities, i
 void sumSelectRow(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex, const WinnerExtras* extras) {
+                  std::int16_t* bestIndex, const WinnerExtras* extras, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(SumSelectRow8)(paths, count, stored8, stored16, x0, x1, numDisparities, minDisparity,
-                                      uniquenessRatio, subpixel, total, disparity16, bestIndex, extras);
+                                      uniquenessRatio, subpixel, total, disparity16, bestIndex, extras, windows.first,
+                                      windows.count);
 }
 void sumSelectRow(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                   const std::uint16_t* stored16, int x0, int x1, int numDisparities, int minDisparity,
                   int uniquenessRatio, bool subpixel, std::uint16_t* total, std::int16_t* disparity16,
-                  std::int16_t* bestIndex, const WinnerExtras* extras) {
+                  std::int16_t* bestIndex, const WinnerExtras* extras, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(SumSelectRow16)(paths, count, stored8, stored16, x0, x1, numDisparities, minDisparity,
-                                       uniquenessRatio, subpixel, total, disparity16, bestIndex, extras);
+                                       uniquenessRatio, subpixel, total, disparity16, bestIndex, extras, windows.first,
+                                       windows.count);
 }
 
 void selectDisparity(const AggregatedCostVolume& sum, int minDisparity, int uniquenessRatio, bool subpixel,

@@ -28,6 +28,11 @@ constexpr Step kDownward[3] = {{0}, {1}, {-1}};  // (0,1), then with 8 paths (1,
 
 }  // namespace
 
+RowWindows CpuMatcher::rowWindows(const Frame& f, int y) {
+  if (f.windows == nullptr) return {};
+  return {f.windows->firstRow(y), f.windows->countRow(y)};
+}
+
 void CpuMatcher::aggregateAndSelect(const Frame& f) {
   const auto t0 = Clock::now();
   if (f.paths8) {
@@ -75,7 +80,7 @@ void CpuMatcher::sweepUp(const Frame& f) {
         std::uint16_t* currentMin = pathMins_.data() + static_cast<std::size_t>(2 * k + i % 2) * W;
         const std::uint16_t* previousMin = pathMins_.data() + static_cast<std::size_t>(2 * k + (i + 1) % 2) * W;
         pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2, current,
-                            currentMin);
+                            currentMin, rowWindows(f, y));
         // The first row of every chunk but the top one: the sweep down restarts the upward paths
         // of the chunk above from here.
         if (y > 0 && y % kChunkRows == 0) {
@@ -158,7 +163,7 @@ void CpuMatcher::upwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
       const std::uint16_t* previousMin =
           r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(f, parity, vp + k, r + 1);
       pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                          chunkPath<PathT>(f, parity, vp + k, r), chunkMin(f, parity, vp + k, r));
+                          chunkPath<PathT>(f, parity, vp + k, r), chunkMin(f, parity, vp + k, r), rowWindows(f, y));
     }
     if (vp > 1) {
 #pragma omp barrier
@@ -187,7 +192,7 @@ void CpuMatcher::downwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1)
       const std::uint16_t* previousMin =
           r == 0 ? chunkMin(f, 1 - parity, k, kChunkRows - 1) : chunkMin(f, parity, k, r - 1);
       pathRowFromPrevious(cost, 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                          chunkPath<PathT>(f, parity, k, r), chunkMin(f, parity, k, r));
+                          chunkPath<PathT>(f, parity, k, r), chunkMin(f, parity, k, r), rowWindows(f, y));
     }
     if (vp > 1) {
 #pragma omp barrier
@@ -211,7 +216,9 @@ void CpuMatcher::selectChunkRows(const Frame& f, int chunk, int r0, int r1, Work
   const PathT* paths[8];
   for (int r = r0; r < r1; ++r) {
     const int y = chunk * kChunkRows + r;
-    pathRowsHorizontal(cost_.data() + static_cast<std::size_t>(y) * W * D, W, D, p.P1, p.P2, rightward, leftward);
+    const RowWindows windows = rowWindows(f, y);
+    pathRowsHorizontal(cost_.data() + static_cast<std::size_t>(y) * W * D, W, D, p.P1, p.P2, rightward, leftward,
+                       windows);
     int count = 0;
     for (int k = 0; k < f.verticalPaths; ++k) {
       paths[count++] = chunkPath<PathT>(f, parity, k, r);
@@ -232,7 +239,7 @@ void CpuMatcher::selectChunkRows(const Frame& f, int chunk, int r0, int r1, Work
       extras.bestCost = confidence.bestCost.view().row(y);
     }
     sumSelectRow(paths, count, nullptr, nullptr, 0, W, D, plan.minDisparity, p.uniquenessRatio, p.subpixel,
-                 w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y), &extras);
+                 w.total.data(), rawDisparity_.view().row(y), bestIndex_.view().row(y), &extras, windows);
     if (plan.confidenceLr) {
       leftRightDifferenceRow(bestIndex_.view().row(y), rightIndex_.view().row(y), W, plan.minDisparity,
                              confidence.leftRightDifference.view().row(y));

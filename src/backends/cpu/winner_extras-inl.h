@@ -44,14 +44,15 @@ struct RightBids {
     std::fill(bestIndex, bestIndex + size, std::uint16_t{0xFFFF});  // -1 as int16: no candidate
   }
 
-  // Left pixel x's bids, S its D costs.
-  HWY_INLINE void bid(const std::uint16_t* HWY_RESTRICT S, int x, int D) {
+  // Left pixel x's bids, S its D costs from disparity index `first` on (a gated pixel's window,
+  // gated_stages.hpp: the disparities outside it do not bid).
+  HWY_INLINE void bid(const std::uint16_t* HWY_RESTRICT S, int x, int D, int first = 0) {
     namespace hn = hwy::HWY_NAMESPACE;
     const D16 d16;
     const int N = static_cast<int>(hn::Lanes(d16));
-    const auto iota = hn::Iota(d16, 0);
+    const auto iota = hn::Iota(d16, static_cast<std::uint16_t>(first));
     // Right pixel xr = x - minDisparity - d: slot offset + width - 1 - x + minDisparity + d.
-    const std::size_t base = static_cast<std::size_t>(offset + width - 1 - x + minDisparity);
+    const std::size_t base = static_cast<std::size_t>(offset + width - 1 - x + minDisparity + first);
     for (int i = 0; i < D; i += N) {
       const auto cost = hn::LoadU(d16, bestCost + base + i);
       const auto offer = hn::LoadU(d16, S + i);

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <utility>
 
+#include "backends/common/gated_stages.hpp"
+#include "backends/common/lidar_search_windows.hpp"
 #include "backends/common/lidar_weights.hpp"
 #include "backends/common/stages.hpp"
 
@@ -46,14 +48,26 @@ void CpuRefMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<
   cpu_ref::StageClock clock;
   const MatchingCostVolume& cost = matchingCost(plan, in, clock, out);
 
-  sum_.resize(plan.width, plan.height, plan.D);
-  cpu_ref::aggregatePaths(cost, p.P1, p.P2, p.paths, sum_);
+  if (plan.gatedSearch) {
+    // The LiDAR gate: each pixel's window, and the matching cost kept on the windows only.
+    lidarSearchWindows(*in.lidar, plan.minDisparity, plan.D, p.gatedSearchRows, p.gatedSearchMargin, windows_);
+    windowedCost_.resize(windows_);
+    cpu_ref::restrictToWindows(cost, windowedCost_);
+    cpu_ref::aggregatePaths(windowedCost_, p.P1, p.P2, p.paths, windowedSum_);
+  } else {
+    sum_.resize(plan.width, plan.height, plan.D);
+    cpu_ref::aggregatePaths(cost, p.P1, p.P2, p.paths, sum_);
+  }
   out.timings.aggregatePaths = clock.lapMs();
 
   rawDisparity_.resize(plan.width, plan.height);
   bestIndex_.resize(plan.width, plan.height);
-  cpu_ref::selectDisparity(sum_, plan.minDisparity, p.uniquenessRatio, p.subpixel,
-                           SelectedDisparity{rawDisparity_.view(), bestIndex_.view()});
+  const SelectedDisparity selected{rawDisparity_.view(), bestIndex_.view()};
+  if (plan.gatedSearch) {
+    cpu_ref::selectDisparity(windowedSum_, plan.minDisparity, p.uniquenessRatio, p.subpixel, selected);
+  } else {
+    cpu_ref::selectDisparity(sum_, plan.minDisparity, p.uniquenessRatio, p.subpixel, selected);
+  }
   out.timings.selectDisparity = clock.lapMs();
 
   confidenceInputs(plan, out.confidenceInputs);
@@ -127,24 +141,33 @@ void CpuRefMatcher::confidenceInputs(const FramePlan& plan, ConfidenceInputs& ou
   if (plan.confidence) {
     out.margin.resize(plan.width, plan.height);
     out.bestCost.resize(plan.width, plan.height);
-    cpu_ref::peakRatioMargin(sum_, std::as_const(bestIndex_).view(), out.margin.view(), out.bestCost.view());
+    if (plan.gatedSearch) {
+      cpu_ref::peakRatioMargin(windowedSum_, std::as_const(bestIndex_).view(), out.margin.view(), out.bestCost.view());
+    } else {
+      cpu_ref::peakRatioMargin(sum_, std::as_const(bestIndex_).view(), out.margin.view(), out.bestCost.view());
+    }
   }
   if (plan.confidenceLr) {
-    rightIndex_.resize(plan.width, plan.height);
-    cpu_ref::rightDisparityIndex(sum_, plan.minDisparity, rightIndex_.view());
+    rightDisparityIndex(plan);
     out.leftRightDifference.resize(plan.width, plan.height);
     cpu_ref::leftRightDifference(std::as_const(bestIndex_).view(), std::as_const(rightIndex_).view(),
                                  plan.minDisparity, out.leftRightDifference.view());
   }
 }
 
+void CpuRefMatcher::rightDisparityIndex(const FramePlan& plan) {
+  rightIndex_.resize(plan.width, plan.height);
+  if (plan.gatedSearch) {
+    cpu_ref::rightDisparityIndex(windowedSum_, plan.minDisparity, rightIndex_.view());
+  } else {
+    cpu_ref::rightDisparityIndex(sum_, plan.minDisparity, rightIndex_.view());
+  }
+}
+
 // With the up camera too, the check compares the left and right views (the right view's winners
 // read diagonally from the same, C_S3-based, volume); the up view is not checked.
 void CpuRefMatcher::leftRightCheck(const FramePlan& plan, const LidarPoints* lidar) {
-  if (!plan.confidenceLr) {
-    rightIndex_.resize(plan.width, plan.height);
-    cpu_ref::rightDisparityIndex(sum_, plan.minDisparity, rightIndex_.view());
-  }
+  if (!plan.confidenceLr) rightDisparityIndex(plan);
   ImageView<const std::uint8_t> covered;
   if (plan.lrCheckTrustsLidar) {
     coverage_.resize(plan.width, plan.height);

@@ -5,6 +5,7 @@
 
 #include "backends/common/cost_volume.hpp"
 #include "backends/common/lidar_cost_table.hpp"
+#include "backends/common/search_windows.hpp"
 #include "core/backend.hpp"
 
 namespace lidar_sgm {
@@ -15,6 +16,7 @@ class StageClock;
 class CpuRefMatcher final : public MatcherBackend {
  public:
   Backend backend() const override { return Backend::CpuRef; }
+  bool searchesGatedWindows() const override { return true; }
   void run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
            FrameResults& out) override;
 
@@ -31,6 +33,8 @@ class CpuRefMatcher final : public MatcherBackend {
   /// The confidence inputs that need S (core/confidence.hpp), read before the check invalidates.
   void confidenceInputs(const FramePlan& plan, ConfidenceInputs& out);
   void leftRightCheck(const FramePlan& plan, const LidarPoints* lidar);
+  /// The right view's winners (rightIndex_), from the full or the windowed sum.
+  void rightDisparityIndex(const FramePlan& plan);
 
   // Buffers kept between frames (resized only when the frame size changes).
   Image<std::uint64_t> leftCensus_;
@@ -43,6 +47,9 @@ class CpuRefMatcher final : public MatcherBackend {
   MatchingCostVolume fusedCost_;
   Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5, fused mode
   AggregatedCostVolume sum_;
+  SearchWindows windows_;                // the gated search's windows (Parameters::gatedSearch)
+  WindowedMatchingCost windowedCost_;    // C on the windows
+  WindowedAggregatedCost windowedSum_;   // S on the windows
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;
   Image<std::int16_t> rightIndex_;

@@ -1,0 +1,58 @@
+#include "backends/common/lidar_search_windows.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cstddef>
+#include <vector>
+
+#include "lidar_sgm/core/image.hpp"
+
+namespace lidar_sgm {
+namespace {
+
+int floorDivide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int ceilDivide(int a, int b) { return -floorDivide(-a, b); }
+
+}  // namespace
+
+void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
+                        SearchWindows& windows) {
+  const int width = points.width();
+  const int height = points.height();
+  windows.resizeFull(width, height, numDisparities);
+  // The neighbourhood is a box: the extremes over +-1 column first (one pass over the points),
+  // then over +-rows rows of those, instead of (2 rows + 1) * 3 pixels' points per pixel.
+  const std::size_t n = static_cast<std::size_t>(width) * height;
+  std::vector<int> lowest16(n, INT_MAX);
+  std::vector<int> highest16(n, INT_MIN);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (const int* d = points.begin(x, y); d != points.end(x, y); ++d) {
+        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+          const std::size_t i = static_cast<std::size_t>(y) * width + nx;
+          lowest16[i] = std::min(lowest16[i], *d);
+          highest16[i] = std::max(highest16[i], *d);
+        }
+      }
+    }
+  }
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      int low16 = INT_MAX;
+      int high16 = INT_MIN;
+      for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
+        const std::size_t i = static_cast<std::size_t>(ny) * width + x;
+        low16 = std::min(low16, lowest16[i]);
+        high16 = std::max(high16, highest16[i]);
+      }
+      if (low16 > high16) continue;  // no point: the LiDAR does not constrain this pixel
+      const int first = std::max(0, floorDivide(low16, kDisparityScale) - margin - minDisparity);
+      const int last = std::min(numDisparities - 1, ceilDivide(high16, kDisparityScale) + margin - minDisparity);
+      if (first > last) continue;  // every point outside the range: nothing to narrow it to
+      const int count = std::min(numDisparities, (last - first + 1 + 15) / 16 * 16);
+      windows.set(x, y, std::min(first, numDisparities - count), count);
+    }
+  }
+}
+
+}  // namespace lidar_sgm

@@ -1,0 +1,23 @@
+#pragma once
+/// @file lidar_search_windows.hpp  The LiDAR gate of the disparity search (Parameters::gatedSearch).
+
+#include "backends/common/search_windows.hpp"
+#include "lidar_sgm/core/lidar_points.hpp"
+
+namespace lidar_sgm {
+
+/// The search window of every pixel from the LiDAR points around it, as tSGM narrows SGM's
+/// search with a prior (disparity indices d of the range [0, numDisparities), disparity
+/// minDisparity + d):
+///  - the points within +-1 column and +-`rows` rows of the pixel (lidarCoverage's neighbourhood:
+///    a pixel between two beams sees the points of both) bound the disparity to
+///    [floor(min d_P) - margin, ceil(max d_P) + margin], min and max over those points (x16 values
+///    divided by 16); both ends clamped into the range;
+///  - that window widened upward to a multiple of 16 indices, then moved down as far as needed to
+///    end inside the range (the range is a multiple of 16, so it always fits);
+///  - a pixel without such a point, or whose points all lie outside the range, searches the full
+///    range [0, numDisparities).
+void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
+                        SearchWindows& windows);
+
+}  // namespace lidar_sgm
