@@ -27,7 +27,7 @@ std::string otherValue(const DensifierOption& o) {
       {"frame", "camera"},        {"paths", "8"},               {"median", "3"},     {"scale", "0.5"},
       {"max_depth", "40"},        {"min_confidence", "0.25"},   {"alpha", "0.25"},   {"num_disparities", "64"},
       {"min_disparity", "-16"},   {"p2", "150"},                {"sky_texture", "2.5"},
-      {"lidar_consistency_ratio", "3"}, {"hidden_lidar_scale", "0.5"}};
+      {"lidar_consistency_ratio", "3"}, {"hidden_lidar_scale", "1"}};
   if (o.kind == OptionKind::Flag) return "true";
   const auto it = choices.find(o.name);
   if (it != choices.end()) return it->second;
