@@ -63,8 +63,12 @@ WholeFrame loadKitti2015LidarFrame(const std::string& dataRoot, const std::strin
 }
 
 WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
-                                        const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups) {
+                                        const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups,
+                                        bool hiddenLidar) {
   Densifier densifier;  // the tools' defaults: DensifierConfig as constructed
+  DensifierConfig config = densifier.config();
+  config.hiddenLidar.enabled = hiddenLidar;
+  densifier.setConfig(config);
   densifier.setBackend(backend);
   const int threads = matcher.threads;
   densifier.parameters().threads = threads;
