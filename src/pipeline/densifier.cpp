@@ -203,10 +203,11 @@ void Densifier::match(const LidarPoints* lidar) {
   std::size_t inconsistent = 0;
   timings_.witness = 0.0;
   if (useLidar && !left.empty() && (config_.hiddenLidar.enabled || config_.lidarConsistency.enabled)) {
-    std::vector<LidarSample> samples = projected_.samples;  // the scan's samples, already at hand
+    std::vector<LidarSample>& samples = keptSamples_;
+    samples = projected_.samples;  // the scan's samples, already at hand; the buffer is reused
     if (config_.hiddenLidar.enabled) {
       const auto witnessStart = std::chrono::steady_clock::now();
-      hidden = dropHiddenLidar(matchStereoWitness(left, right), samples, config_.hiddenLidar);
+      hidden = dropHiddenLidar(matchStereoWitness(left, right), *lidar, samples, config_.hiddenLidar);
       timings_.witness = millisecondsSince(witnessStart);
     }
     if (config_.lidarConsistency.enabled) inconsistent = dropInconsistentLidar(left, right, samples, config_.lidarConsistency);

@@ -7,23 +7,6 @@
 #include <string>
 
 namespace lidar_sgm {
-namespace {
-
-constexpr int kNoPoint = std::numeric_limits<int>::min();
-
-/// The nearest (largest) x16 disparity of the points in each pixel, kNoPoint where there is none.
-std::vector<int> nearestPointPerPixel(const std::vector<LidarSample>& samples, int width, int height) {
-  std::vector<int> nearest(static_cast<std::size_t>(width) * height, kNoPoint);
-  for (const LidarSample& s : samples) {
-    if (s.x < 0 || s.y < 0 || s.x >= width || s.y >= height) continue;
-    int& n = nearest[static_cast<std::size_t>(s.y) * width + s.x];
-    n = std::max(n, s.disparity16);
-  }
-  return nearest;
-}
-
-}  // namespace
-
 void validate(const HiddenLidarOptions& o) {
   const auto fail = [](const std::string& what) { throw std::invalid_argument("HiddenLidarOptions: " + what); };
   if (!(o.minGap >= 0.5 && o.minGap <= 64.0)) fail("minGap must be in [0.5, 64] px");
@@ -34,13 +17,17 @@ void validate(const HiddenLidarOptions& o) {
   if (o.witnessScale != 1.0f && o.witnessScale != 0.5f) fail("witnessScale must be 1 or 0.5");
 }
 
-std::size_t dropHiddenLidar(ImageView<const std::int16_t> stereo, std::vector<LidarSample>& samples,
-                            const HiddenLidarOptions& o) {
+std::size_t dropHiddenLidar(ImageView<const std::int16_t> stereo, const LidarPoints& scan,
+                            std::vector<LidarSample>& samples, const HiddenLidarOptions& o) {
   validate(o);
   if (!o.enabled || samples.empty() || stereo.empty()) return 0;
+  if (scan.width() != stereo.width || scan.height() != stereo.height) {
+    throw std::invalid_argument("dropHiddenLidar: the scan is " + std::to_string(scan.width()) + "x" +
+                                std::to_string(scan.height()) + " but the stereo disparity " +
+                                std::to_string(stereo.width) + "x" + std::to_string(stereo.height));
+  }
   const int w = stereo.width;
   const int h = stereo.height;
-  const std::vector<int> nearest = nearestPointPerPixel(samples, w, h);
   // Compared in x16 fixed point, as both disparities are stored.
   const double minGap16 = 16.0 * o.minGap;
   const auto hidden = [&](const LidarSample& s) {
@@ -63,8 +50,9 @@ std::size_t dropHiddenLidar(ImageView<const std::int16_t> stereo, std::vector<Li
     // stereo disparity no point confirms is more often stereo's own mistake.
     for (int y = std::max(0, s.y - o.supportHalfHeight); y <= std::min(h - 1, s.y + o.supportHalfHeight); ++y) {
       for (int x = std::max(0, s.x - o.supportHalfWidth); x <= std::min(w - 1, s.x + o.supportHalfWidth); ++x) {
-        const int n = nearest[static_cast<std::size_t>(y) * w + x];
-        if (n != kNoPoint && std::abs(n - seen) <= minGap16) return true;
+        if (scan.count(x, y) == 0) continue;
+        const int nearest = *std::max_element(scan.begin(x, y), scan.end(x, y));  // the pixel's nearest point
+        if (std::abs(nearest - seen) <= minGap16) return true;
       }
     }
     return false;

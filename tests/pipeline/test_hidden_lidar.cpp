@@ -57,28 +57,34 @@ TEST(HiddenLidar, OnlyPointsBehindTheStereoSurfaceByTheGapAreDropped) {
     }
     return gone;
   };
+  // The frame's scan: the samples that lie in the image.
+  std::vector<LidarSample> inside;
+  for (const LidarSample& s : samples) {
+    if (s.x < stereo.width() && s.y < stereo.height()) inside.push_back(s);
+  }
+  const LidarPoints scan(stereo.width(), stereo.height(), inside);
   HiddenLidarOptions options;
   std::vector<LidarSample> kept = samples;
-  EXPECT_EQ(dropHiddenLidar(stereo.view(), kept, options), 3u);
+  EXPECT_EQ(dropHiddenLidar(stereo.view(), scan, kept, options), 3u);
   EXPECT_EQ(hiddenOnes(samples, kept), (std::vector<std::pair<int, int>>{{2, 1}, {31, 3}, {23, 8}}));
   options.minGap = 1.0;  // now the 1.5 px one is hidden too
   kept = samples;
-  EXPECT_EQ(dropHiddenLidar(stereo.view(), kept, options), 4u);
+  EXPECT_EQ(dropHiddenLidar(stereo.view(), scan, kept, options), 4u);
   options = {};
   options.supportHalfWidth = 1;  // (31, 3)'s voucher, two columns away, is too far now
   options.supportHalfHeight = 0;
   kept = samples;
-  EXPECT_EQ(dropHiddenLidar(stereo.view(), kept, options), 2u);
+  EXPECT_EQ(dropHiddenLidar(stereo.view(), scan, kept, options), 2u);
   EXPECT_EQ(hiddenOnes(samples, kept), (std::vector<std::pair<int, int>>{{2, 1}, {23, 8}}));
   options = {};
   options.halfWidth = 0;  // the point's own pixel alone: the fattened edge hides the background point
   kept = samples;
   EXPECT_EQ(hiddenOnes(samples, kept), (std::vector<std::pair<int, int>>{}));  // nothing dropped yet
-  EXPECT_EQ(dropHiddenLidar(stereo.view(), kept, options), 4u);
+  EXPECT_EQ(dropHiddenLidar(stereo.view(), scan, kept, options), 4u);
   EXPECT_EQ(hiddenOnes(samples, kept), (std::vector<std::pair<int, int>>{{2, 1}, {31, 3}, {18, 8}, {23, 8}}));
   options.enabled = false;
   kept = samples;
-  EXPECT_EQ(dropHiddenLidar(stereo.view(), kept, options), 0u);
+  EXPECT_EQ(dropHiddenLidar(stereo.view(), scan, kept, options), 0u);
   EXPECT_EQ(kept.size(), samples.size());
 }
 

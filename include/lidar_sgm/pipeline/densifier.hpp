@@ -228,6 +228,7 @@ class Densifier {
   std::unique_ptr<PostMatcherPasses> passes_;  ///< the passes after the matcher, with their buffers
   Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for
   Image<std::int16_t> witnessDisparity_;  ///< the stereo-only witness of the hidden-LiDAR check
+  std::vector<LidarSample> keptSamples_;  ///< the points left in the matching, buffer reused per frame
   Image<std::int16_t> disparity_;
   Image<float> depth_;
   Image<std::uint8_t> confidence_;

@@ -63,9 +63,10 @@ void validate(const HiddenLidarOptions& options);
 
 /// Removes from `samples` (pixel and x16 disparity in the left image) the points that
 /// `stereoDisparity16` (the stereo-only disparity of the same left image, x16, kInvalidDisparity
-/// where it has none) sees a nearer surface in front of; returns how many. Points on pixels
+/// where it has none) sees a nearer surface in front of; returns how many. `scan` is the frame's
+/// projected scan (the same size), whose points vouch for the nearer surface. Points on pixels
 /// without a stereo disparity, or outside the image, are kept.
-std::size_t dropHiddenLidar(ImageView<const std::int16_t> stereoDisparity16, std::vector<LidarSample>& samples,
-                            const HiddenLidarOptions& options);
+std::size_t dropHiddenLidar(ImageView<const std::int16_t> stereoDisparity16, const LidarPoints& scan,
+                            std::vector<LidarSample>& samples, const HiddenLidarOptions& options);
 
 }  // namespace lidar_sgm
