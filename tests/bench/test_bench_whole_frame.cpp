@@ -106,6 +106,26 @@ TEST_F(BenchWholeFrame, TimesTheCloudTheDensifyToolWrites) {
   EXPECT_EQ(full.at("points"), points) << "the bench's frame is not the tool's";
 }
 
+// The hidden-LiDAR filter's stereo witness is a part of the fused match, and
+// -no_hidden_lidar_filter times the frame without it: the witness column is what the filter costs.
+TEST_F(BenchWholeFrame, WitnessColumnIsTheHiddenLidarFiltersMatch) {
+  const std::string command = bench() + " -kitti_frame 000007 -configs densifier -runs 1 -warmups 0";
+  const RunResult with = run(command);
+  const RunResult without = run(command + " -no_hidden_lidar_filter");
+  ASSERT_EQ(with.exitCode, 0) << with.output;
+  ASSERT_EQ(without.exitCode, 0) << without.output;
+  const auto on = resultLine(with.output, "densifier");
+  const auto off = resultLine(without.output, "densifier");
+  ASSERT_EQ(on.count("witness_ms"), 1u) << with.output;
+  ASSERT_EQ(off.count("witness_ms"), 1u) << without.output;
+  EXPECT_GT(std::stod(on.at("witness_ms")), 0.0) << with.output;
+  EXPECT_LE(std::stod(on.at("witness_ms")) + std::stod(on.at("kernel_ms")), std::stod(on.at("match_ms")))
+      << with.output;
+  EXPECT_EQ(std::stod(off.at("witness_ms")), 0.0) << without.output;
+  // Without the filter every projected point reaches the matcher: the clouds differ.
+  EXPECT_NE(on.at("points"), off.at("points")) << with.output << without.output;
+}
+
 TEST_F(BenchWholeFrame, WholeFrameConfigurationsNeedAFrameAndAMissingFrameIsNamed) {
   const RunResult noFrame = run(std::string(test::kBenchTool) + " -synthetic -configs densifier -runs 1");
   EXPECT_EQ(noFrame.exitCode, 1) << noFrame.output;
