@@ -32,7 +32,7 @@ struct FrameRun {
 /// confidence dropped any pixel (MethodOutput::allDisparity): without a new run. With
 /// `groundTruthCloud`, also the 3D score of the output's cloud.
 MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput& out, bool curves,
-                   const GroundTruthCloud* groundTruthCloud) {
+                   const GroundTruthCloud* groundTruthCloud, const Image<std::uint8_t>& offTheScan) {
   const Image<std::int16_t>& d = out.disparity;
   MethodResult result;
   result.method = method;
@@ -45,7 +45,12 @@ MethodResult score(const Method& method, const EvalFrame& f, const MethodOutput&
   scoring.denseGroundTruth = f.denseGroundTruth;  // P3: a point on the sky is wrong
   result.cloud = evaluateCloud(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
   result.depth = evaluateDepth(d.view(), f.groundTruth.view(), f.exclude.view(), f.focalBaseline, scoring);
-  if (!f.objectMap.empty()) result.objectSplit = evaluateObjectSplit(d.view(), f.groundTruth.view(), f.objectMap.view());
+  if (!f.objectMap.empty()) {
+    result.objectSplit = evaluateObjectSplit(d.view(), f.groundTruth.view(), f.objectMap.view());
+    result.objectSplitOnScan =
+        offTheScan.empty() ? result.objectSplit
+                           : evaluateObjectSplit(d.view(), f.groundTruth.view(), f.objectMap.view(), offTheScan.view());
+  }
   if (!f.inputPixels.empty()) result.uncovered = evaluateDisparity(d.view(), f.groundTruth.view(), f.inputPixels.view());
   if (groundTruthCloud) result.cloud3d = groundTruthCloud->score(d.view());
   if (curves && !out.confidence.empty()) {
@@ -64,10 +69,14 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
   const std::optional<GroundTruthCloud> groundTruthCloud =
       frame.calibration ? std::optional<GroundTruthCloud>(std::in_place, frame) : std::nullopt;
   const GroundTruthCloud* cloud3d = groundTruthCloud ? &*groundTruthCloud : nullptr;
+  if (!frame.objectMap.empty() && !frame.lidarSparse.empty()) {
+    run.result.scanAgreement = scanAgreement(frame.lidarSparse.view(), frame.groundTruth.view(), frame.objectMap.view());
+  }
+  const Image<std::uint8_t> offTheScan = offTheScanPixels(frame.objectMap.view(), run.result.scanAgreement);
   for (const Method& m : methods) {
     MethodOutput out =
         runMethod(m, frame, config, options.fixedNumDisparities);
-    run.result.methods.push_back(score(m, frame, out, true, cloud3d));
+    run.result.methods.push_back(score(m, frame, out, true, cloud3d, offTheScan));
     run.disparities.emplace_back(m, std::move(out.disparity));
   }
   for (double alpha : options.alphas) {
@@ -77,7 +86,7 @@ FrameRun runFrame(const EvalFrame& frame, const std::vector<Method>& methods, co
     const bool paperAlpha = std::abs(alpha - kPaperAlpha) < 1e-9;
     // Only the table's entry is judged and scored in 3D: at every alpha, the curves would cost a
     // second sweep and the 3D score (a kd-tree per cloud) as much as the matching.
-    run.sweep.push_back(score(fused, frame, out, paperAlpha, paperAlpha ? cloud3d : nullptr));
+    run.sweep.push_back(score(fused, frame, out, paperAlpha, paperAlpha ? cloud3d : nullptr, offTheScan));
     if (paperAlpha) {
       run.fusedRange = out.range.describe();
       run.result.methods.push_back(run.sweep.back());

@@ -51,10 +51,12 @@ DisparityMetrics evaluateDisparity(ImageView<const std::int16_t> estimate,
 }
 
 ObjectSplitMetrics evaluateObjectSplit(ImageView<const std::int16_t> estimate, ImageView<const float> groundTruth,
-                                       ImageView<const std::uint8_t> objectMap) {
+                                       ImageView<const std::uint8_t> objectMap,
+                                       ImageView<const std::uint8_t> exclude) {
   if (estimate.width != groundTruth.width || estimate.height != groundTruth.height ||
-      objectMap.width != estimate.width || objectMap.height != estimate.height) {
-    throw std::invalid_argument("evaluateObjectSplit: estimate, ground truth and object map differ in size");
+      objectMap.width != estimate.width || objectMap.height != estimate.height ||
+      (!exclude.empty() && (exclude.width != estimate.width || exclude.height != estimate.height))) {
+    throw std::invalid_argument("evaluateObjectSplit: estimate, ground truth, object map and exclusion differ in size");
   }
   long estimated[2] = {0, 0};  // [background, foreground]
   long wrong[2] = {0, 0};
@@ -62,7 +64,7 @@ ObjectSplitMetrics evaluateObjectSplit(ImageView<const std::int16_t> estimate, I
   for (int y = 0; y < groundTruth.height; ++y) {
     for (int x = 0; x < groundTruth.width; ++x) {
       const float gt = groundTruth(x, y);
-      if (!(gt > 0.0f)) continue;
+      if (!(gt > 0.0f) || (!exclude.empty() && exclude(x, y) != 0)) continue;
       const int object = objectMap(x, y) > 0 ? 1 : 0;
       ++m.gtPixels;
       m.foregroundPixels += object;

@@ -82,11 +82,12 @@ nlohmann::json methodJson(const MethodResult& method) {
   entry["best_alpha"] = method.bestAlpha;
   entry["name"] = label(method);
   entry["ms"] = method.milliseconds;
-  if (method.objectSplit) {
-    const ObjectSplitMetrics& o = *method.objectSplit;
-    entry["object_split"] = {{"background", o.background}, {"foreground", o.foreground}, {"total", o.total},
-                             {"density", o.density},       {"gt_pixels", o.gtPixels}, {"foreground_pixels", o.foregroundPixels}};
-  }
+  const auto splitJson = [](const ObjectSplitMetrics& o) -> nlohmann::json {
+    return {{"background", o.background}, {"foreground", o.foreground}, {"total", o.total},
+            {"density", o.density},       {"gt_pixels", o.gtPixels}, {"foreground_pixels", o.foregroundPixels}};
+  };
+  if (method.objectSplit) entry["object_split"] = splitJson(*method.objectSplit);
+  if (method.objectSplitOnScan) entry["object_split_on_scan"] = splitJson(*method.objectSplitOnScan);
   if (method.uncovered) entry["uncovered"] = metricsJson(*method.uncovered);
   if (method.cloud3d) entry["cloud_3d"] = cloudDistanceJson(*method.cloud3d);
   if (method.numDisparities > 0) {
@@ -99,7 +100,16 @@ nlohmann::json methodJson(const MethodResult& method) {
 nlohmann::json frameJson(const FrameResult& frame) {
   nlohmann::json methods = nlohmann::json::array();
   for (const MethodResult& method : frame.methods) methods.push_back(methodJson(method));
-  return {{"dataset", frame.dataset}, {"frame", frame.frame}, {"methods", methods}};
+  nlohmann::json entry = {{"dataset", frame.dataset}, {"frame", frame.frame}, {"methods", methods}};
+  if (!frame.scanAgreement.empty()) {
+    nlohmann::json objects = nlohmann::json::array();
+    for (const ObjectScanAgreement& a : frame.scanAgreement) {
+      objects.push_back({{"object", a.object}, {"points", a.points}, {"median_scan_minus_gt_px", a.medianDifference},
+                         {"off_the_scan", a.offTheScan()}});
+    }
+    entry["scan_agreement"] = objects;
+  }
+  return entry;
 }
 
 nlohmann::json protocolJson(const ProtocolResult& result) {
@@ -169,6 +179,7 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
   std::vector<std::vector<DepthMetrics>> depths;
   std::vector<std::vector<double>> milliseconds;
   std::vector<std::vector<ObjectSplitMetrics>> splits;
+  std::vector<std::vector<ObjectSplitMetrics>> splitsOnScan;
   std::vector<std::vector<DisparityMetrics>> uncovered;
   std::vector<std::vector<CloudDistanceScore>> clouds3d;
   for (const FrameResult& frame : result.frames) {
@@ -185,10 +196,12 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
         depths.emplace_back();
         milliseconds.emplace_back();
         splits.emplace_back();
+        splitsOnScan.emplace_back();
         uncovered.emplace_back();
         clouds3d.emplace_back();
       }
       if (method.objectSplit) splits[index].push_back(*method.objectSplit);
+      if (method.objectSplitOnScan) splitsOnScan[index].push_back(*method.objectSplitOnScan);
       if (method.uncovered) uncovered[index].push_back(*method.uncovered);
       if (method.cloud3d) clouds3d[index].push_back(*method.cloud3d);
       metrics[index].push_back(method.metrics);
@@ -204,9 +217,11 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
     entries[i].milliseconds = medianOf(milliseconds[i]);
     entries[i].numDisparities = 0;  // a range per frame, not a median
     entries[i].objectSplit.reset();
+    entries[i].objectSplitOnScan.reset();
     entries[i].uncovered.reset();
     entries[i].cloud3d.reset();
     if (!splits[i].empty()) entries[i].objectSplit = meanObjectSplit(splits[i]);
+    if (!splitsOnScan[i].empty()) entries[i].objectSplitOnScan = meanObjectSplit(splitsOnScan[i]);
     if (!uncovered[i].empty()) entries[i].uncovered = medianOver(uncovered[i]);
     if (!clouds3d[i].empty()) entries[i].cloud3d = medianCloudDistance(clouds3d[i]);
   }

@@ -39,9 +39,11 @@ struct ObjectSplitMetrics {
   long gtPixels = 0;
 };
 
-/// `objectMap` has the estimate's size; std::invalid_argument otherwise.
+/// `objectMap` has the estimate's size; std::invalid_argument otherwise. Pixels where `exclude` (if
+/// not empty, the same size) is non-zero are not scored.
 ObjectSplitMetrics evaluateObjectSplit(ImageView<const std::int16_t> estimate, ImageView<const float> groundTruth,
-                                       ImageView<const std::uint8_t> objectMap);
+                                       ImageView<const std::uint8_t> objectMap,
+                                       ImageView<const std::uint8_t> exclude = {});
 
 }  // namespace eval
 }  // namespace lidar_sgm

@@ -14,6 +14,7 @@
 #include "lidar_sgm/eval/confidence_curves.hpp"
 #include "lidar_sgm/eval/methods.hpp"
 #include "lidar_sgm/eval/metrics.hpp"
+#include "lidar_sgm/eval/scan_agreement.hpp"
 
 namespace lidar_sgm {
 namespace eval {
@@ -39,6 +40,9 @@ struct MethodResult {
   /// Frames with an object map (the KITTI142 protocol): the paper's Table II figures; for the
   /// medians, the means over the frames (KITTI's evaluation averages its error rates per image).
   std::optional<ObjectSplitMetrics> objectSplit{};
+  /// The same without the pixels of the frame's objects whose GT lies off their own scan
+  /// (scan_agreement.hpp); equal to objectSplit on a frame without such an object.
+  std::optional<ObjectSplitMetrics> objectSplitOnScan{};
   /// Frames that score their input pixels too (KITTI142): the metrics on the GT pixels that no
   /// input point covers, where the GT cannot favour a method for having been given the answer.
   std::optional<DisparityMetrics> uncovered{};
@@ -57,6 +61,8 @@ std::string label(const MethodResult& result);
 struct FrameResult {
   std::string dataset, frame;
   std::vector<MethodResult> methods;
+  /// Frames with an object map: each object's GT against the frame's scan (scan_agreement.hpp).
+  std::vector<ObjectScanAgreement> scanAgreement{};
 };
 
 /// A method over a range of alphas: (alpha, median metrics over the frames at that alpha).
