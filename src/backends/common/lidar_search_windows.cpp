@@ -23,8 +23,10 @@ void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisp
   // The neighbourhood is a box: the extremes over +-1 column first (one pass over the points),
   // then over +-rows rows of those, instead of (2 rows + 1) * 3 pixels' points per pixel.
   const std::size_t n = static_cast<std::size_t>(width) * height;
-  std::vector<int> lowest16(n, INT_MAX);
-  std::vector<int> highest16(n, INT_MIN);
+  std::vector<int>& lowest16 = windows.lowest16();
+  std::vector<int>& highest16 = windows.highest16();
+  lowest16.assign(n, INT_MAX);  // no reallocation for a size seen before
+  highest16.assign(n, INT_MIN);
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       for (const int* d = points.begin(x, y); d != points.end(x, y); ++d) {

@@ -38,10 +38,17 @@ class SearchWindows {
     count_(x, y) = static_cast<std::int16_t>(count);
   }
 
+  /// Working rows of lidarSearchWindows (the extremes of each pixel's points over +-1 column),
+  /// kept with the windows so that a frame of a size seen before allocates nothing.
+  std::vector<int>& lowest16() { return lowest16_; }
+  std::vector<int>& highest16() { return highest16_; }
+
  private:
   int numDisparities_ = 0;
   Image<std::int16_t> first_;
   Image<std::int16_t> count_;
+  std::vector<int> lowest16_;
+  std::vector<int> highest16_;
 };
 
 /// A volume holding, for each pixel, only the entries of its search window, pixels in raster
