@@ -92,9 +92,8 @@ void printUsage(const char* program) {
       "                          densifier,densifier_half (default: all, or with -kitti_frame those two)\n"
       "  -num_disparities N      (default 128)\n"
       "  -paths 4|8              SGM paths of every configuration but paths8 (default 4)\n"
-      "  -no_gated_search        every configuration searches the whole range at every pixel\n"
-      "  -gated_search_margin M -gated_search_rows R   the LiDAR-gated search's window (Parameters::\n"
-      "                          gatedSearch, the default with LiDAR; M 8, R 6)\n"
+      "  -gated_search [-gated_search_margin M -gated_search_rows R]   every configuration with the\n"
+      "                          LiDAR-gated search (Parameters::gatedSearch; default off, M 8, R 6)\n"
       "  -no_hidden_lidar_filter the whole frame without the hidden-LiDAR filter (its stereo witness)\n"
       "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n"
       "  -h, --help              this help\n"
@@ -119,7 +118,7 @@ apps::Arguments parseArguments(int argc, char** argv) {
                          {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
                           "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame",
                           "gated_search_margin", "gated_search_rows"},
-                         {"synthetic", "growth", "no_gated_search", "no_hidden_lidar_filter"});
+                         {"synthetic", "growth", "gated_search", "no_hidden_lidar_filter"});
 }
 
 Options optionsFrom(const apps::Arguments& args) {
@@ -145,7 +144,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.kittiFrame = args.text("kitti_frame", o.kittiFrame);
   o.synthetic = args.has("synthetic");
   o.growth = args.has("growth");
-  o.gate.gatedSearch = !args.has("no_gated_search");
+  o.gate.gatedSearch = args.has("gated_search");
   o.hiddenLidar = !args.has("no_hidden_lidar_filter");
   o.gate.gatedSearchMargin = args.integer("gated_search_margin", o.gate.gatedSearchMargin);
   o.gate.gatedSearchRows = args.integer("gated_search_rows", o.gate.gatedSearchRows);
@@ -307,7 +306,7 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
     std::printf("  search:       LiDAR-gated (-gated_search_margin %d -gated_search_rows %d); stereo-only: the full range\n",
                 base.gatedSearchMargin, base.gatedSearchRows);
   } else {
-    std::printf("  search:       the full range at every pixel (-no_gated_search)\n");
+    std::printf("  search:       the full range at every pixel (no -gated_search)\n");
   }
   std::printf("  mode:         ");
   for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());

@@ -512,9 +512,6 @@ TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
     GTEST_SKIP() << "backend " << name << ": " << unavailableReason(backendFromString(name));
   }
   Parameters params;
-  // Each case searches the whole range unless it gates (the Gated* cases set gatedSearch), so
-  // that both searches stay covered stage by stage.
-  params.gatedSearch = false;
   c.tweak(params);
   params.threads = threads;
   const BackendScene scene =

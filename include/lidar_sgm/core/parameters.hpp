@@ -69,9 +69,9 @@ struct Parameters {
   /// [min - gatedSearchMargin, max + gatedSearchMargin] of those points' disparities, widened to a
   /// multiple of 16 and kept inside [minDisparity, minDisparity + numDisparities); every other
   /// pixel searches the full range. The cost volume and the path sums hold only the windows
-  /// (backends/common/lidar_search_windows.hpp). On by default: on KITTI142 it lowers the fused
-  /// error and no synthetic protocol loses by it (docs/RESULTS.md, "LiDAR-gated search").
-  bool gatedSearch = true;
+  /// (backends/common/lidar_search_windows.hpp). Off by default; measured in docs/RESULTS.md.
+  /// Implemented by backends cpu_ref and cpu; cuda refuses it (std::invalid_argument).
+  bool gatedSearch = false;
   /// Widening of a gated window beyond its LiDAR disparities on each side [px], in [0, 512]; like
   /// gatedSearchRows, in the pixels of the matched image (halved images at scale 0.5).
   int gatedSearchMargin = 8;

@@ -38,17 +38,19 @@ class SearchWindows {
     count_(x, y) = static_cast<std::int16_t>(count);
   }
 
-  /// Working rows of lidarSearchWindows (the extremes of each pixel's points over +-1 column),
-  /// kept with the windows so that a frame of a size seen before allocates nothing.
-  std::vector<int>& lowest16() { return lowest16_; }
-  std::vector<int>& highest16() { return highest16_; }
+  /// Working storage of lidarSearchWindows, kept with the windows so that a frame of a size seen
+  /// before allocates nothing: the extremes of each pixel's points over +-1 column (W x H), and
+  /// one row of their extremes over the rows around it.
+  struct Scratch {
+    std::vector<int> lowest16, highest16, rowLowest16, rowHighest16;
+  };
+  Scratch& scratch() { return scratch_; }
 
  private:
   int numDisparities_ = 0;
   Image<std::int16_t> first_;
   Image<std::int16_t> count_;
-  std::vector<int> lowest16_;
-  std::vector<int> highest16_;
+  Scratch scratch_;
 };
 
 /// A volume holding, for each pixel, only the entries of its search window, pixels in raster

@@ -112,14 +112,18 @@ HWY_INLINE unsigned PathStart(const std::uint8_t* HWY_RESTRICT cost, T* HWY_REST
 }
 
 // The first disparity index and the number of disparities pixel x searches (the whole range
-// without windows). A gated pixel's slot is reset to the sentinel first: the next pixel on the path
-// must read the entries outside this pixel's window as absent (gated_stages.hpp).
+// without windows). A gated pixel's slot holds the sentinel outside its window: the next pixel on
+// the path must read the entries outside this pixel's window as absent (gated_stages.hpp).
 template <typename T>
 HWY_INLINE T* WindowOfSlot(T* slotValues, const std::int16_t* first, const std::int16_t* count, int x, int D,
                            int& windowFirst, int& windowCount) {
   windowFirst = first == nullptr ? 0 : first[x];
   windowCount = first == nullptr ? D : count[x];
-  if (windowCount < D) std::fill(slotValues, slotValues + D, pathSentinel<T>());
+  if (windowCount < D) {
+    // Only the entries outside the window: the step writes every entry inside it.
+    std::fill(slotValues, slotValues + windowFirst, pathSentinel<T>());
+    std::fill(slotValues + windowFirst + windowCount, slotValues + D, pathSentinel<T>());
+  }
   return slotValues + windowFirst;
 }
 
