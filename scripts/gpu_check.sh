@@ -11,7 +11,7 @@
 #   5. lidar_sgm_bench on .gpu_check/frame: fused, stereo-only, LiDAR-only at 4 and 8 paths, fused
 #      at half scale, 128 disparities
 #   6. libSGM built from .gpu_check/libSGM with nvcc, and timed on the same pair (4 and 8 paths)
-#   7. a table: ours (kernel, with transfers) beside libSGM
+#   7. a table: ours (kernel, with transfers) beside libSGM; then the fused frame with -gated_search
 # A step that fails is recorded and the later steps still run; the exit code is 1 if any step
 # failed. Everything goes to $OUT when it is set, else to out/gpu_check/.
 #
@@ -183,8 +183,9 @@ cuda_sanitizer() {
 
 bench() {
   local paths=$1 configs=$2
+  shift 2
   "$build/bench/lidar_sgm_bench" -frame_dir "$frame" -backend "$backend" -num_disparities 128 -paths "$paths" \
-    -configs "$configs" -runs "$runs" -warmups "$warmups"
+    -configs "$configs" -runs "$runs" -warmups "$warmups" "$@"
 }
 
 # libSGM's own sources, compiled with nvcc here (its CMake may not work with CMake 4 / CUDA 13).
@@ -289,6 +290,8 @@ else
 fi
 gpu_step libsgm_paths4 60 libsgm_run 4
 gpu_step libsgm_paths8 60 libsgm_run 8
+# The LiDAR-gated search on the fused frame (its own log, outside the table: libSGM has no gate).
+gpu_step bench_gated 60 bench 4 fused -gated_search
 
 {
   echo

@@ -541,14 +541,7 @@ TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
   }
 
   auto reference = Matcher::create(Backend::CpuRef, params);
-  std::unique_ptr<Matcher> backend;
-  try {
-    backend = Matcher::create(backendFromString(name), params);
-  } catch (const std::invalid_argument& e) {
-    // A backend without the gated search refuses it (tests/core/test_gated_search.cpp).
-    if (params.gatedSearch) GTEST_SKIP() << e.what();
-    throw;
-  }
+  std::unique_ptr<Matcher> backend = Matcher::create(backendFromString(name), params);
   ASSERT_EQ(toString(backend->backend()), name);
   Image<std::int16_t> expected(c.width, c.height), actual(c.width, c.height);
   reference->compute(left, right, up, lidar, expected.view());
@@ -626,7 +619,6 @@ TEST(BackendReuse, OneMatcherThroughChangingFramesMatchesCpuRef) {
                              Step{131, 61, 64, 8, 4000, 255, false}, Step{131, 61, 64, 8, 4000, 255, true},
                              Step{64, 40, 16, 4, 100, 62, false}, Step{131, 61, 64, 4, 100, 62, true},
                              Step{131, 61, 64, 4, 100, 62, false}}) {
-      if (step.gated && name == "cuda") continue;  // cuda refuses the gated search
       Parameters params;
       params.numDisparities = step.numDisparities;
       params.paths = step.paths;

@@ -28,7 +28,7 @@ cat "$summary"
 for step in prepare machine configure build; do
   grep -q "^$step: ok" "$summary" || fail "step $step did not pass"
 done
-for step in test_backends test_core memcheck racecheck bench_paths4 libsgm_paths4; do
+for step in test_backends test_core memcheck racecheck bench_paths4 libsgm_paths4 bench_gated; do
   grep -q "^$step: skipped (dry run)" "$summary" || fail "step $step is not listed as skipped"
 done
 grep -q "^libsgm_build: skipped (no libSGM" "$summary" || fail "libsgm_build is not skipped without libSGM"

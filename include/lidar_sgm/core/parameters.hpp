@@ -70,7 +70,7 @@ struct Parameters {
   /// multiple of 16 and kept inside [minDisparity, minDisparity + numDisparities); every other
   /// pixel searches the full range. The cost volume and the path sums hold only the windows
   /// (backends/common/lidar_search_windows.hpp). Off by default; measured in docs/RESULTS.md.
-  /// Implemented by backends cpu_ref and cpu; cuda refuses it (std::invalid_argument).
+  /// Implemented by every backend (cpu_ref, cpu, cuda).
   bool gatedSearch = false;
   /// Widening of a gated window beyond its LiDAR disparities on each side [px], in [0, 512]; like
   /// gatedSearchRows, in the pixels of the matched image (halved images at scale 0.5).

@@ -30,6 +30,9 @@ class SearchWindows {
   int first(int x, int y) const { return first_(x, y); }
   int count(int x, int y) const { return count_(x, y); }
   bool contains(int x, int y, int d) const { return d >= first(x, y) && d < first(x, y) + count(x, y); }
+  /// Every pixel's first index and count as images (a backend that uploads them).
+  ImageView<const std::int16_t> firsts() const { return first_.view(); }
+  ImageView<const std::int16_t> counts() const { return count_.view(); }
   /// The windows of row y, for a backend that walks rows: first and count of pixel x at [x].
   const std::int16_t* firstRow(int y) const { return first_.view().row(y); }
   const std::int16_t* countRow(int y) const { return count_.view().row(y); }

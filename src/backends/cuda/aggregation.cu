@@ -6,6 +6,12 @@
 // minimum over d (a warp reduction). Every direction of a launch runs at once (blockIdx.y), each
 // into its own L_r volume, so the rows, columns and diagonals of all directions keep the GPU
 // busy; selection.cu sums them. The arithmetic is cpu_ref's pathCostStep, in int.
+//
+// The gated search (gated_stages.hpp): a disparity outside the pixel's window holds kAbsent in the
+// lane's registers, so that the next step's terms from it (L(p-r, d), L(p-r, d+-1) + P1) never
+// win against min_k L(p-r, k) + P2, which is always present, and the warp's minimum is the
+// window's; it is stored as kAbsentPathCost. Without windows every disparity is in the window and
+// the step is Eq. 1 as before.
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/kernels.hpp"
 #include "backends/cuda/launch.cuh"
@@ -16,6 +22,8 @@ namespace cuda {
 namespace {
 
 constexpr int kWarpsPerBlock = 4;
+/// A path cost outside the window, in registers: above every real one and every sum of one with P1.
+constexpr int kAbsent = 1 << 24;
 
 struct Direction {
   int dx;
@@ -103,7 +111,8 @@ __device__ __forceinline__ void storeSlots(std::uint16_t* out, const int (&L)[VP
 
 template <int VPL, typename Cost>
 __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
-    aggregateKernel(Cost cost, int width, int height, int D, int P1, int P2, DeviceVolume<std::uint16_t> pathCosts) {
+    aggregateKernel(Cost cost, DeviceWindows windows, int width, int height, int D, int P1, int P2,
+                    DeviceVolume<std::uint16_t> pathCosts) {
   const int lane = static_cast<int>(threadIdx.x) & (kWarpSize - 1);
   const int line = static_cast<int>(blockIdx.x) * kWarpsPerBlock + static_cast<int>(threadIdx.x) / kWarpSize;
   const Direction r = kDirections[blockIdx.y];
@@ -120,6 +129,14 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
   for (int step = 0; step < length; ++step, x += r.dx, y += r.dy) {
     int L[VPL];
     int c[VPL];
+    // This pixel's window (the whole range without the gate).
+    int windowFirst = 0;
+    int windowEnd = D;
+    if (!windows.empty()) {
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      windowFirst = windows.first[i];
+      windowEnd = windowFirst + windows.count[i];
+    }
     if (active) {
       cost(x, y, firstD, c);
     } else {
@@ -129,7 +146,10 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
     if (step == 0) {
       // The path starts here: L_r(p, d) = C(p, d).
 #pragma unroll
-      for (int k = 0; k < VPL; ++k) L[k] = c[k];
+      for (int k = 0; k < VPL; ++k) {
+        const int d = firstD + k;
+        L[k] = d >= windowFirst && d < windowEnd ? c[k] : kAbsent;
+      }
     } else {
       // Eq. 1: C(p,d) + min(L(p-r,d), L(p-r,d-1)+P1, L(p-r,d+1)+P1, min_i L(p-r,i)+P2) - min_k L(p-r,k).
       const int fromLeftLane = __shfl_up_sync(kFullMask, previous[VPL - 1], 1);
@@ -141,14 +161,17 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
         if (d > 0) best = min(best, (k > 0 ? previous[k - 1] : fromLeftLane) + P1);
         if (d + 1 < D) best = min(best, (k + 1 < VPL ? previous[k + 1] : fromRightLane) + P1);
         best = min(best, previousMin + P2);
-        L[k] = c[k] + best - previousMin;
+        L[k] = d >= windowFirst && d < windowEnd ? c[k] + best - previousMin : kAbsent;
       }
     }
     int laneMin = INT_MAX;
     if (active) {
 #pragma unroll
       for (int k = 0; k < VPL; ++k) laneMin = min(laneMin, L[k]);
-      storeSlots<VPL>(volume + (static_cast<std::size_t>(y) * width + x) * D + firstD, L);
+      int stored[VPL];
+#pragma unroll
+      for (int k = 0; k < VPL; ++k) stored[k] = L[k] == kAbsent ? kAbsentPathCost : L[k];
+      storeSlots<VPL>(volume + (static_cast<std::size_t>(y) * width + x) * D + firstD, stored);
     }
     previousMin = warpMin(laneMin);
 #pragma unroll
@@ -164,29 +187,30 @@ int linesOf(int width, int height, int paths) {
 }
 
 template <typename Cost>
-void launchAggregation(const Cost& cost, int width, int height, int D, int P1, int P2, int paths,
-                       DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
+void launchAggregation(const Cost& cost, DeviceWindows windows, int width, int height, int D, int P1, int P2,
+                       int paths, DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
   const dim3 grid(static_cast<unsigned>((linesOf(width, height, paths) + kWarpsPerBlock - 1) / kWarpsPerBlock),
                   static_cast<unsigned>(paths));
   withSlotsPerLane(D, [&](auto slots) {
     constexpr int VPL = decltype(slots)::value;
-    aggregateKernel<VPL, Cost><<<grid, kWarpsPerBlock * kWarpSize, 0, stream>>>(cost, width, height, D, P1, P2,
-                                                                                pathCosts);
+    aggregateKernel<VPL, Cost><<<grid, kWarpsPerBlock * kWarpSize, 0, stream>>>(cost, windows, width, height, D, P1,
+                                                                                P2, pathCosts);
   });
   LIDAR_SGM_CUDA_CHECK_LAUNCH("aggregateKernel");
 }
 
 }  // namespace
 
-void aggregatePaths(const CostSettings& settings, int P1, int P2, int paths, DeviceVolume<std::uint16_t> pathCosts,
-                    cudaStream_t stream) {
-  launchAggregation(ComputedCost{settings}, settings.width, settings.height, settings.numDisparities, P1, P2, paths,
-                    pathCosts, stream);
+void aggregatePaths(const CostSettings& settings, DeviceWindows windows, int P1, int P2, int paths,
+                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
+  launchAggregation(ComputedCost{settings}, windows, settings.width, settings.height, settings.numDisparities, P1, P2,
+                    paths, pathCosts, stream);
 }
 
 void aggregatePaths(DeviceVolume<const std::uint8_t> cost, int P1, int P2, int paths,
                     DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
-  launchAggregation(StoredCost{cost}, cost.width, cost.height, cost.numDisparities, P1, P2, paths, pathCosts, stream);
+  launchAggregation(StoredCost{cost}, DeviceWindows{}, cost.width, cost.height, cost.numDisparities, P1, P2, paths,
+                    pathCosts, stream);
 }
 
 }  // namespace cuda

@@ -1,6 +1,7 @@
 // The backend's part of the confidence (core/confidence.hpp) on the GPU: the peak-ratio margin of
 // the aggregated cost curve (one warp per pixel, as selection.cu) and the left-right difference
-// (one thread per pixel), with cpu_ref/confidence_inputs.cpp's integer arithmetic.
+// (one thread per pixel), with cpu_ref/confidence_inputs.cpp's integer arithmetic. The rival S2
+// runs over the window of the gated search: an entry of S outside it (kAbsentPathCost) is none.
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/kernels.hpp"
 #include "backends/cuda/launch.cuh"
@@ -38,7 +39,7 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
   for (int k = 0; k < VPL; ++k) {
     const int d = firstD + k;
     S[k] = d < D ? static_cast<int>(__ldg(sum.data + pixel * D + d)) : 0;
-    if (d < D && abs(d - best) > 1) laneSecond = min(laneSecond, S[k]);
+    if (d < D && abs(d - best) > 1 && S[k] != kAbsentPathCost) laneSecond = min(laneSecond, S[k]);
   }
   const int second = warpMin(laneSecond);
   const int first = __shfl_sync(kFullMask, pickSlot<VPL>(S, best % VPL), best / VPL);

@@ -7,6 +7,7 @@
 
 #include <cuda_runtime_api.h>
 
+#include "backends/common/lidar_search_windows.hpp"
 #include "backends/common/lidar_weights.hpp"
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/kernels.hpp"
@@ -40,6 +41,7 @@ struct CudaMatcher::FrameImages {
   DeviceImage<const std::uint16_t> images16[3];
   DeviceImage<std::uint64_t> census[3];
   DeviceImage<std::uint8_t> support, coverage;
+  DeviceWindows windows;  // empty: the whole range at every pixel
   DeviceVolume<std::uint16_t> pathCosts, sum;
   DeviceImage<std::int16_t> raw, best, rightIndex, filtered;
   DeviceImage<std::uint8_t> margin, difference;
@@ -115,6 +117,7 @@ void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageV
   if (outputOnDevice) frame.filtered = DeviceImage<std::int16_t>{disparity.data, plan.width, plan.height, disparity.stride};
   uploadCameras(plan, in, inputsOnDevice, frame);
   if (plan.useLidar) uploadLidar(plan, *in.lidar, frame);
+  if (plan.gatedSearch) uploadWindows(plan, *in.lidar, frame);
   dev.mark(kUploaded);
   censusTransforms(plan, frame);
   dev.mark(kCensus);
@@ -217,6 +220,17 @@ void CudaMatcher::uploadLidar(const FramePlan& plan, const LidarPoints& lidar, F
   s.stereoCostWithoutLidar = p.stereoCostWithoutLidar;
 }
 
+// The gated search's windows, as cpu_ref and cpu compute them; the host copy lives in Device
+// until the next frame, so the asynchronous upload reads it whole.
+void CudaMatcher::uploadWindows(const FramePlan& plan, const LidarPoints& lidar, FrameImages& f) {
+  Device& dev = *device_;
+  const Parameters& p = plan.params;
+  lidarSearchWindows(lidar, plan.minDisparity, plan.D, p.gatedSearchRows, p.gatedSearchMargin, dev.hostWindows);
+  uploadImage(dev.hostWindows.firsts(), dev.windowFirst, dev.stream);
+  uploadImage(dev.hostWindows.counts(), dev.windowCount, dev.stream);
+  f.windows = DeviceWindows{dev.windowFirst.data(), dev.windowCount.data()};
+}
+
 void CudaMatcher::censusTransforms(const FramePlan& plan, FrameImages& f) {
   Device& dev = *device_;
   for (int i = 0; i < plan.cameras; ++i) {
@@ -236,7 +250,7 @@ void CudaMatcher::censusTransforms(const FramePlan& plan, FrameImages& f) {
 // Eq. 1 with the matching cost (C_S, C_S3, C_L or Eq. 5) computed inside the recursion.
 void CudaMatcher::aggregatePaths(const FramePlan& plan, FrameImages& f) {
   const Parameters& p = plan.params;
-  cuda::aggregatePaths(f.costs, p.P1, p.P2, p.paths, f.pathCosts, device_->stream);
+  cuda::aggregatePaths(f.costs, f.windows, p.P1, p.P2, p.paths, f.pathCosts, device_->stream);
 }
 
 // S, the winners and the confidence inputs that need S, read before the check invalidates.

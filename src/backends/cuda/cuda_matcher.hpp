@@ -20,6 +20,8 @@ class CudaMatcher final : public MatcherBackend {
            FrameResults& out) override;
   /// The confidence's core part runs on the device too (confidence.cu).
   bool computesConfidence() const override { return true; }
+  /// The LiDAR-gated search: windows from the host, Eq. 1 and the selection on them (aggregation.cu).
+  bool searchesGatedWindows() const override { return true; }
 
   // Frames in device memory (device_frame.cpp, and runStages with the inputs on the device).
   bool readsDeviceMemory() const override { return true; }
@@ -36,6 +38,7 @@ class CudaMatcher final : public MatcherBackend {
   void reserveImages(const FramePlan& plan, FrameImages& frame);
   void uploadCameras(const FramePlan& plan, const FrameInputs& in, bool inputsOnDevice, FrameImages& frame);
   void uploadLidar(const FramePlan& plan, const LidarPoints& lidar, FrameImages& frame);
+  void uploadWindows(const FramePlan& plan, const LidarPoints& lidar, FrameImages& frame);
   void censusTransforms(const FramePlan& plan, FrameImages& frame);
   void aggregatePaths(const FramePlan& plan, FrameImages& frame);
   void selectDisparity(const FramePlan& plan, FrameImages& frame);

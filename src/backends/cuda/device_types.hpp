@@ -41,6 +41,15 @@ struct DeviceCostTable {
   int cap = 0;
 };
 
+/// The LiDAR-gated search's windows (SearchWindows, search_windows.hpp) in device memory, dense
+/// W x H: pixel i searches disparity indices [first[i], first[i] + count[i]). Empty: every pixel
+/// searches the whole range.
+struct DeviceWindows {
+  const std::int16_t* first = nullptr;
+  const std::int16_t* count = nullptr;
+  LIDAR_SGM_HOST_DEVICE bool empty() const { return first == nullptr; }
+};
+
 /// A width x height x numDisparities volume in device memory, d innermost ([y][x][d]), as
 /// CostVolume on the host.
 template <typename T>

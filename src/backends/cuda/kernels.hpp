@@ -48,15 +48,21 @@ void fuseCosts(DeviceVolume<const std::uint8_t> lidar, DeviceVolume<const std::u
 
 // aggregation.cu: Eq. 1 along `paths` directions (cpu_ref's order), L_r of direction r into
 // pathCosts + r * volume size. The matching cost is computed in the recursion (`settings`) or
-// read from a stored volume (`cost`, for the stage test).
-void aggregatePaths(const CostSettings& settings, int P1, int P2, int paths, DeviceVolume<std::uint16_t> pathCosts,
-                    cudaStream_t stream);
+// read from a stored volume (`cost`, for the stage test). With `windows` (the gated search), Eq. 1
+// runs on each pixel's window (gated_stages.hpp) and an entry outside it holds kAbsentPathCost.
+void aggregatePaths(const CostSettings& settings, DeviceWindows windows, int P1, int P2, int paths,
+                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream);
 void aggregatePaths(DeviceVolume<const std::uint8_t> cost, int P1, int P2, int paths,
                     DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream);
 
+/// A path cost or sum outside its pixel's search window (the gated search): no candidate. Every
+/// real value is below it (L <= 255 + P2, S <= 8 * (255 + 4000)), so the whole-range search never
+/// stores it and the stages after the aggregation need no windows: they skip this value.
+constexpr std::uint16_t kAbsentPathCost = 0xFFFF;
+
 // selection.cu: S = sum of the `numPaths` volumes at pathCosts (written to `sum` unless its data
-// is null), then winner-takes-all with uniqueness and sub-pixel (Eq. 2) unless disparity16 is
-// empty.
+// is null; kAbsentPathCost where the paths hold it), then winner-takes-all with uniqueness and
+// sub-pixel (Eq. 2) over the entries that are not absent, unless disparity16 is empty.
 void selectDisparity(DeviceVolume<const std::uint16_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
                      int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
                      DeviceImage<std::int16_t> bestIndex, cudaStream_t stream);

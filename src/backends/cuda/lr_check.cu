@@ -5,7 +5,9 @@
 // sees left pixel x = xr + minDisparity + d at disparity index d, so for each left pixel x the
 // tile's candidates are a contiguous run of d: a warp reads that run (coalesced) and keeps the
 // minimum key (S << 16) | d per right pixel with a shared-memory atomicMin. The smallest key is
-// the lowest cost with the smallest d: cpu_ref's first minimum.
+// the lowest cost with the smallest d: cpu_ref's first minimum. An entry outside its left pixel's
+// window (kAbsentPathCost, the gated search) is no candidate; a right pixel without any gets -1
+// (cpu_ref/gated_lr_check.cpp).
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/kernels.hpp"
 #include "backends/cuda/launch.cuh"
@@ -40,8 +42,9 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
     const std::uint16_t* S = sum.at(x, y);
     for (int d = dLow + lane; d <= dHigh; d += kWarpSize) {
       const int xr = x - minDisparity - d;
-      if (xr >= width) continue;
-      atomicMin(&keys[xr - xr0], (static_cast<unsigned>(__ldg(S + d)) << 16) | static_cast<unsigned>(d));
+      const unsigned cost = __ldg(S + d);
+      if (xr >= width || cost == kAbsentPathCost) continue;
+      atomicMin(&keys[xr - xr0], (cost << 16) | static_cast<unsigned>(d));
     }
   }
   __syncthreads();

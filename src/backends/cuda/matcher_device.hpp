@@ -9,6 +9,7 @@
 #include <cuda_runtime_api.h>
 
 #include "backends/common/lidar_cost_table.hpp"
+#include "backends/common/search_windows.hpp"
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/cuda_matcher.hpp"
 #include "backends/cuda/device_buffer.hpp"
@@ -49,6 +50,11 @@ struct CudaMatcher::Device {
   DeviceBuffer<std::uint8_t> table;
   DeviceBuffer<std::uint16_t> weights;  // adaptive alpha only
   DeviceBuffer<std::uint8_t> coverage;
+  // The gated search's windows, computed on the host (lidarSearchWindows, shared with the CPU
+  // backends) and uploaded per frame.
+  SearchWindows hostWindows;
+  DeviceBuffer<std::int16_t> windowFirst;
+  DeviceBuffer<std::int16_t> windowCount;
   DeviceBuffer<std::uint16_t> pathCosts;  // one L_r volume per path
   DeviceBuffer<std::uint16_t> sum;
   DeviceBuffer<std::int16_t> rawDisparity;

@@ -1,7 +1,9 @@
 // The sum over paths (Eq. 2's S) and the winner-takes-all selection on the GPU: one warp per
 // pixel, VPL disparities per lane. The winner is the minimum of the keys (S << 16) | d, so the
 // first minimum wins ties as in cpu_ref/selection.cpp; uniqueness and the parabola use the same
-// integer arithmetic.
+// integer arithmetic. With the gated search, an entry outside the pixel's window is
+// kAbsentPathCost in every path (aggregation.cu) and in S: above every real key, never a rival,
+// and a winner next to it keeps its integer disparity (cpu_ref/gated_selection.cpp).
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/kernels.hpp"
 #include "backends/cuda/launch.cuh"
@@ -44,11 +46,19 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
 #pragma unroll
   for (int k = 0; k < VPL; ++k) S[k] = 0;
   if (active) {
+    bool absent[VPL] = {};
     for (int r = 0; r < numPaths; ++r) {
       int L[VPL];
       loadSlots<VPL>(pathCosts.data + static_cast<std::size_t>(r) * pathCosts.size() + pixel * D + firstD, L);
 #pragma unroll
-      for (int k = 0; k < VPL; ++k) S[k] += L[k];  // <= 8 * (255 + 4000): no 16-bit overflow
+      for (int k = 0; k < VPL; ++k) {
+        if (r == 0) absent[k] = L[k] == kAbsentPathCost;  // outside the window: so in every path
+        S[k] += L[k];  // <= 8 * (255 + 4000): no 16-bit overflow
+      }
+    }
+#pragma unroll
+    for (int k = 0; k < VPL; ++k) {
+      if (absent[k]) S[k] = kAbsentPathCost;
     }
     if (sum.data != nullptr) {
       std::uint16_t* out = sum.data + pixel * D + firstD;
@@ -75,7 +85,9 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
 #pragma unroll
       for (int k = 0; k < VPL; ++k) {
         const int d = firstD + k;
-        if (abs(d - best) > 1 && S[k] * (100 - uniquenessRatio) < bestCost * 100) rival = true;
+        if (S[k] != kAbsentPathCost && abs(d - best) > 1 && S[k] * (100 - uniquenessRatio) < bestCost * 100) {
+          rival = true;
+        }
       }
     }
     unique = !__any_sync(kFullMask, rival);
@@ -92,8 +104,8 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
     return;
   }
   int offset16 = 0;
-  if (subpixel && best > 0 && best < D - 1) {
-    // Vertex of the parabola through (best-1, best, best+1): (S- - S+) / (2 (S- + S+ - 2 S)).
+  if (subpixel && best > 0 && best < D - 1 && costBefore != kAbsentPathCost && costAfter != kAbsentPathCost) {
+    // Vertex of the parabola through (best-1, best, best+1), both in the window: (S- - S+) / (2 (S- + S+ - 2 S)).
     const int curvature = costBefore + costAfter - 2 * bestCost;
     if (curvature > 0) offset16 = roundedDivide((costBefore - costAfter) * kDisparityScale, 2 * curvature);
   }
