@@ -43,9 +43,10 @@ class SearchWindows {
 
   /// Working storage of lidarSearchWindows, kept with the windows so that a frame of a size seen
   /// before allocates nothing: the extremes of each pixel's points over +-1 column (W x H), and
-  /// one row of their extremes over the rows around it.
+  /// one row of their extremes over the rows around it; x16 disparities clamped to 16 bits (twice
+  /// the lanes of int, and native 16-bit min and max in every SIMD set).
   struct Scratch {
-    std::vector<int> lowest16, highest16, rowLowest16, rowHighest16;
+    std::vector<std::int16_t> lowest16, highest16, rowLowest16, rowHighest16;
   };
   Scratch& scratch() { return scratch_; }
 
