@@ -51,10 +51,11 @@ struct WholeFrameMeasurement {
 /// `runs` pairs after `warmups`: one Densifier frame (defaults, fused, `backend`, `scale`, and
 /// `matcher`'s threads and gated search), then one cv::StereoSGBM::compute with `sgbm` on `sgbmPair`
 /// (the pair at the scale matched) with as many threads. Throws std::logic_error if a frame is not fused.
-/// `hiddenLidar` false turns the Densifier's hidden-LiDAR filter off (its default is on).
+/// `hiddenLidar` false turns the Densifier's hidden-LiDAR filter off (its default is on);
+/// `witnessScale` is its witness's scale (HiddenLidarOptions::witnessScale).
 WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
                                         const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups,
-                                        bool hiddenLidar = true);
+                                        bool hiddenLidar = true, float witnessScale = 0.5f);
 
 }  // namespace bench
 }  // namespace lidar_sgm

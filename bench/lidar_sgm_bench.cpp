@@ -55,6 +55,7 @@ struct Options {
   int numDisparities = 128;
   int paths = 4;
   bool hiddenLidar = true;  ///< the whole frame's hidden-LiDAR filter (-no_hidden_lidar_filter: off)
+  float witnessScale = 0.5f;  ///< its witness's scale (-hidden_lidar_scale)
   Parameters gate;  ///< its gatedSearch, gatedSearchMargin and gatedSearchRows: every configuration's
   std::vector<std::string> configs;  ///< keys of the configurations to run; empty: all
   bool synthetic = false;
@@ -95,6 +96,7 @@ void printUsage(const char* program) {
       "  -gated_search [-gated_search_margin M -gated_search_rows R]   every configuration with the\n"
       "                          LiDAR-gated search (Parameters::gatedSearch; default off, M 8, R 6)\n"
       "  -no_hidden_lidar_filter the whole frame without the hidden-LiDAR filter (its stereo witness)\n"
+      "  -hidden_lidar_scale S   the filter's stereo witness at scale S: 0.5 (default), 0.25 or 1\n"
       "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n"
       "  -h, --help              this help\n"
       "  --version               the tool's name and version\n"
@@ -117,7 +119,7 @@ apps::Arguments parseArguments(int argc, char** argv) {
   return apps::Arguments(argc, argv,
                          {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
                           "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame",
-                          "gated_search_margin", "gated_search_rows"},
+                          "gated_search_margin", "gated_search_rows", "hidden_lidar_scale"},
                          {"synthetic", "growth", "gated_search", "no_hidden_lidar_filter"});
 }
 
@@ -146,6 +148,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.growth = args.has("growth");
   o.gate.gatedSearch = args.has("gated_search");
   o.hiddenLidar = !args.has("no_hidden_lidar_filter");
+  o.witnessScale = static_cast<float>(args.number("hidden_lidar_scale", o.witnessScale));
   o.gate.gatedSearchMargin = args.integer("gated_search_margin", o.gate.gatedSearchMargin);
   o.gate.gatedSearchRows = args.integer("gated_search_rows", o.gate.gatedSearchRows);
   if (o.runs < 1) throw std::invalid_argument("-runs must be at least 1");
@@ -461,6 +464,10 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
                       const std::vector<std::string>& keys) {
   const int threads = effectiveThreads(base);
   if (!o.hiddenLidar) std::printf("\nWhole frame without the hidden-LiDAR filter (-no_hidden_lidar_filter).");
+  if (o.hiddenLidar && o.witnessScale != 0.5f) {
+    std::printf("\nWhole frame with the hidden-LiDAR filter's witness at scale %g (-hidden_lidar_scale).",
+                static_cast<double>(o.witnessScale));
+  }
   std::printf("\nWhole frame: Densifier::run with the tools' defaults (fused; range from the LiDAR; confidence, "
               "sky and outlier filters, minimum confidence; a colored cloud in the LiDAR frame), %s, %d threads;\n"
               "paired with OpenCV's StereoSGBM (stereo only) on the pair at the scale matched, %d threads: %d pairs "
@@ -483,7 +490,8 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
       sgbmPair = resizedFrame(whole.pair, (whole.pair.width() + 1) / 2, (whole.pair.height() + 1) / 2);
     }
     const WholeFrameMeasurement m =
-        measureWholeFrame(whole, backend, base, scale, sgbmPair, sgbm, o.runs, o.warmups, o.hiddenLidar);
+        measureWholeFrame(whole, backend, base, scale, sgbmPair, sgbm, o.runs, o.warmups, o.hiddenLidar,
+                          o.witnessScale);
     const double peak = peakRssMiB();
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %d | %s | %s (%s, %d disp.) | %.2f [%.2f, %.2f] |\n",
                 config.first.c_str(), ms(m.frameMs).c_str(), ms(m.projectMs).c_str(), ms(m.matchMs).c_str(),

@@ -9,6 +9,7 @@
 #include "lidar_sgm/geometry/scan_extent.hpp"
 #include "lidar_sgm/pipeline/hidden_lidar.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
+#include "core/half_scale.hpp"
 #include "pipeline/post_matcher_passes.hpp"
 
 namespace lidar_sgm {
@@ -235,24 +236,58 @@ void Densifier::match(const LidarPoints* lidar) {
   timings_.match = millisecondsSince(start);
 }
 
+namespace {
+
+// The pair halved by a 2x2 box (the matcher's own half-scale step), into `buffer8` or `buffer16`.
+GrayImageView halved(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16) {
+  if (!in.gray8.empty()) {
+    downscaleHalf(in.gray8, buffer8);
+    return GrayImageView(std::as_const(buffer8).view());
+  }
+  downscaleHalf(in.gray16, buffer16);
+  return GrayImageView(std::as_const(buffer16).view());
+}
+
+int floorHalf(int value) { return value >= 0 ? value / 2 : -((-value + 1) / 2); }
+
+}  // namespace
+
 ImageView<const std::int16_t> Densifier::matchStereoWitness(const GrayImageView& left, const GrayImageView& right) {
   // Stereo alone over the fused frame's range, with the left-right check whatever the fused
   // settings (an occluded pixel must have no vote) and without the confidence nobody reads; at
-  // the frame's scale, or at half scale when asked. The fused matcher does it, before its own
-  // frame: its buffers serve both.
+  // the frame's scale, at half scale, or at quarter scale (the pair halved here, then matched at
+  // half scale). The fused matcher does it, before its own frame: its buffers serve both.
   Parameters p = usedParams_;
   p.lrCheck = true;
   p.confidence = false;
-  if (config_.hiddenLidar.witnessScale != 1.0f) p.scale = 0.5f;
-  if (p.scale != 1.0f) {
+  const float scale = config_.hiddenLidar.witnessScale;
+  const bool quarter = scale == 0.25f;
+  GrayImageView witnessLeft = left;
+  GrayImageView witnessRight = right;
+  if (quarter) {
+    witnessLeft = halved(left, witnessLeft8_, witnessLeft16_);
+    witnessRight = halved(right, witnessRight8_, witnessRight16_);
+    // The halved pair's range: half of the frame's, widened to whole pixels.
+    const int end = -floorHalf(-(p.minDisparity + p.numDisparities));
+    p.minDisparity = floorHalf(p.minDisparity);
+    p.numDisparities = end - p.minDisparity;
+  }
+  if (scale != 1.0f) {
     // Half scale searches half the range: an even start and a multiple of 32 that still covers it.
+    p.scale = 0.5f;
     const int end = p.minDisparity + p.numDisparities;
     p.minDisparity -= ((p.minDisparity % 2) + 2) % 2;
     p.numDisparities = std::min(512, 32 * ((end - p.minDisparity + 31) / 32));  // 512: the largest range
   }
   matcher_->setParameters(p);
   witnessDisparity_.resize(left.width(), left.height());
-  matcher_->compute(left, right, nullptr, witnessDisparity_.view());
+  if (quarter) {
+    witnessHalfDisparity_.resize(witnessLeft.width(), witnessLeft.height());
+    matcher_->compute(witnessLeft, witnessRight, nullptr, witnessHalfDisparity_.view());
+    upscaleDisparity(std::as_const(witnessHalfDisparity_).view(), witnessDisparity_.view());
+  } else {
+    matcher_->compute(left, right, nullptr, witnessDisparity_.view());
+  }
   matcher_->setParameters(usedParams_);
   return witnessDisparity_.view();
 }

@@ -14,7 +14,9 @@ void validate(const HiddenLidarOptions& o) {
   if (o.halfWidth < 0 || o.halfWidth > 16) fail("halfWidth must be in [0, 16] px");
   if (o.supportHalfWidth < 0 || o.supportHalfWidth > 64) fail("supportHalfWidth must be in [0, 64] px");
   if (o.supportHalfHeight < 0 || o.supportHalfHeight > 64) fail("supportHalfHeight must be in [0, 64] px");
-  if (o.witnessScale != 1.0f && o.witnessScale != 0.5f) fail("witnessScale must be 1 or 0.5");
+  if (o.witnessScale != 1.0f && o.witnessScale != 0.5f && o.witnessScale != 0.25f) {
+    fail("witnessScale must be 1, 0.5 or 0.25");
+  }
 }
 
 std::size_t dropHiddenLidar(ImageView<const std::int16_t> stereo, const LidarPoints& scan,

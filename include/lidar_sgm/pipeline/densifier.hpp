@@ -228,6 +228,11 @@ class Densifier {
   std::unique_ptr<PostMatcherPasses> passes_;  ///< the passes after the matcher, with their buffers
   Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for
   Image<std::int16_t> witnessDisparity_;  ///< the stereo-only witness of the hidden-LiDAR check
+  // The witness at quarter scale (HiddenLidarOptions::witnessScale 0.25): the pair halved here,
+  // the halved pair's disparity.
+  Image<std::uint8_t> witnessLeft8_, witnessRight8_;
+  Image<std::uint16_t> witnessLeft16_, witnessRight16_;
+  Image<std::int16_t> witnessHalfDisparity_;
   std::vector<LidarSample> keptSamples_;  ///< the points left in the matching, buffer reused per frame
   Image<std::int16_t> disparity_;
   Image<float> depth_;
