@@ -1,6 +1,7 @@
 #include "core/half_scale.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace lidar_sgm {
@@ -25,6 +26,16 @@ void downscaleHalfImpl(ImageView<const Pixel> in, Image<Pixel>& out) {
 
 void downscaleHalf(ImageView<const std::uint8_t> in, Image<std::uint8_t>& out) { downscaleHalfImpl(in, out); }
 void downscaleHalf(ImageView<const std::uint16_t> in, Image<std::uint16_t>& out) { downscaleHalfImpl(in, out); }
+
+GrayImageView downscaleHalf(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16) {
+  if (in.empty()) return {};
+  if (!in.gray8.empty()) {
+    downscaleHalf(in.gray8, buffer8);
+    return GrayImageView(std::as_const(buffer8).view());
+  }
+  downscaleHalf(in.gray16, buffer16);
+  return GrayImageView(std::as_const(buffer16).view());
+}
 
 LidarPoints halveLidarPoints(const LidarPoints& points) {
   std::vector<LidarSample> samples;

@@ -17,6 +17,8 @@ inline int halfSize(int full) { return (full + 1) / 2; }
 /// the border pixel repeated past an odd edge. `out` is resized to halfSize() x halfSize().
 void downscaleHalf(ImageView<const std::uint8_t> in, Image<std::uint8_t>& out);
 void downscaleHalf(ImageView<const std::uint16_t> in, Image<std::uint16_t>& out);
+/// A gray image of either depth halved into the buffer of its depth; empty in, empty out.
+GrayImageView downscaleHalf(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16);
 
 /// Every point moves to pixel (x/2, y/2) with its disparity halved, rounded half up (x16), so at
 /// least 1/16 px: a point stays in front of the camera.

@@ -14,17 +14,6 @@ double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Scales a gray image of either depth down into the matching owned buffer.
-GrayImageView downscaled(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16) {
-  if (in.empty()) return {};
-  if (!in.gray8.empty()) {
-    downscaleHalf(in.gray8, buffer8);
-    return GrayImageView(std::as_const(buffer8).view());
-  }
-  downscaleHalf(in.gray16, buffer16);
-  return GrayImageView(std::as_const(buffer16).view());
-}
-
 // Only what the plan uses reaches the backend.
 FrameInputs planned(const FramePlan& plan, const GrayImageView& left, const GrayImageView& right,
                     const GrayImageView& up, const LidarPoints* lidar) {
@@ -64,9 +53,9 @@ void Matcher::Impl::runAtHalfScale(const FramePlan& plan, const GrayImageView& l
                                    const VerticalView& vertical, const LidarPoints* lidar,
                                    ImageView<std::int16_t> disparity) {
   auto start = std::chrono::steady_clock::now();
-  const GrayImageView halfLeft = downscaled(left, half8[0], half16[0]);
-  const GrayImageView halfRight = downscaled(right, half8[1], half16[1]);
-  const GrayImageView halfUp = downscaled(vertical.up, half8[2], half16[2]);
+  const GrayImageView halfLeft = downscaleHalf(left, half8[0], half16[0]);
+  const GrayImageView halfRight = downscaleHalf(right, half8[1], half16[1]);
+  const GrayImageView halfUp = downscaleHalf(vertical.up, half8[2], half16[2]);
   LidarPoints halfLidar;
   if (lidar != nullptr && !lidar->empty()) halfLidar = halveLidarPoints(*lidar);
   halfDisparity.resize(plan.width, plan.height);

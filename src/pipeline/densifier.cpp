@@ -238,16 +238,6 @@ void Densifier::match(const LidarPoints* lidar) {
 
 namespace {
 
-// The pair halved by a 2x2 box (the matcher's own half-scale step), into `buffer8` or `buffer16`.
-GrayImageView halved(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16) {
-  if (!in.gray8.empty()) {
-    downscaleHalf(in.gray8, buffer8);
-    return GrayImageView(std::as_const(buffer8).view());
-  }
-  downscaleHalf(in.gray16, buffer16);
-  return GrayImageView(std::as_const(buffer16).view());
-}
-
 int floorHalf(int value) { return value >= 0 ? value / 2 : -((-value + 1) / 2); }
 
 }  // namespace
@@ -265,8 +255,8 @@ ImageView<const std::int16_t> Densifier::matchStereoWitness(const GrayImageView&
   GrayImageView witnessLeft = left;
   GrayImageView witnessRight = right;
   if (quarter) {
-    witnessLeft = halved(left, witnessLeft8_, witnessLeft16_);
-    witnessRight = halved(right, witnessRight8_, witnessRight16_);
+    witnessLeft = downscaleHalf(left, witnessLeft8_, witnessLeft16_);
+    witnessRight = downscaleHalf(right, witnessRight8_, witnessRight16_);
     // The halved pair's range: half of the frame's, widened to whole pixels.
     const int end = -floorHalf(-(p.minDisparity + p.numDisparities));
     p.minDisparity = floorHalf(p.minDisparity);

@@ -77,6 +77,16 @@ TEST(LidarSearchWindows, TheRangesOffsetAndPointsOutsideIt) {
   expectWindow(w, 15, 5, 0, 32);
 }
 
+TEST(LidarSearchWindows, DisparitiesBeyondSixteenBitsKeepTheirSide) {
+  // The gate works on x16 disparities clamped to 16 bits: a point at 3000 px (48000 x16) beside
+  // one at 20 px still bounds its neighbours' window from above by the range's end, not below.
+  const LidarPoints points(20, 10, {{5, 5, 20 * 16}, {6, 5, 3000 * 16}});
+  SearchWindows w;
+  lidarSearchWindows(points, 0, 64, 0, 2, w);
+  expectWindow(w, 5, 5, 16, 48);  // [18, 63] -> 48 wide, moved down to end at 64
+  expectWindow(w, 7, 5, 0, 64);   // only the far point: outside the range, no gate
+}
+
 TEST(GatedPathCost, TermsOutsideThePreviousWindowAreAbsent) {
   // Previous window [4, 8) with L = 30, 10, 40, 50: M = 10. P1 = 3, P2 = 20.
   const std::uint16_t previous[4] = {30, 10, 40, 50};
