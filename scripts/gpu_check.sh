@@ -7,11 +7,13 @@
 #      them: every package it lacks (Eigen, OpenCV, PCL, Highway, GoogleTest, CLI11, ...) is hidden
 #      from CMake here too, so that the tree built is the same on every machine
 #   3. the CUDA tests against cpu_ref, the core's tests, the PGM frame tests
-#   4. compute-sanitizer's memcheck and racecheck over the CUDA test cases
-#   5. lidar_sgm_bench on .gpu_check/frame: fused, stereo-only, LiDAR-only at 4 and 8 paths, fused
+#   4. lidar_sgm_bench on .gpu_check/frame: fused, stereo-only, LiDAR-only at 4 and 8 paths, fused
 #      at half scale, 128 disparities
-#   6. libSGM built from .gpu_check/libSGM with nvcc, and timed on the same pair (4 and 8 paths)
-#   7. a table: ours (kernel, with transfers) beside libSGM; then the fused frame with -gated_search
+#   5. libSGM built from .gpu_check/libSGM with nvcc, and timed on the same pair (4 and 8 paths)
+#   6. the fused frame with -gated_search
+#   7. compute-sanitizer's memcheck over the CUDA test cases, racecheck over those at one host
+#      thread (last: the slowest)
+#   8. a table: ours (kernel, with transfers) beside libSGM
 # A step that fails is recorded and the later steps still run; the exit code is 1 if any step
 # failed. Everything goes to $OUT when it is set, else to out/gpu_check/.
 #
@@ -29,6 +31,7 @@
 #   GPU_CHECK_PREP=.gpu_check                what scripts/gpu_check_prepare.sh filled
 #   GPU_CHECK_CUDA_ARCHITECTURES=90          the GPU's architecture (H100/H200: 90)
 #   GPU_CHECK_TEST_FILTER='*cuda*:*Cuda*:*Reuse*:*Registry*:*DeviceFrames*'   test_backends' filter
+#   GPU_CHECK_RACECHECK_FILTER='*cuda_1threads*:*Reuse*:*DeviceFrames*'    racecheck's (memcheck: the above)
 #   GPU_CHECK_CMAKE_ARGS     more configure arguments
 #   GPU_CHECK_TOTAL_S=450    the whole script's budget (--dry-run: 3600): a step gets what is left of it
 set -uo pipefail
@@ -51,6 +54,7 @@ warmups=${GPU_CHECK_WARMUPS:-10}
 jobs=${GPU_CHECK_JOBS:-$( ((dry_run)) && nproc || echo 16)}
 build=${GPU_CHECK_BUILD:-build-gpu-check}
 test_filter=${GPU_CHECK_TEST_FILTER:-'*cuda*:*Cuda*:*Reuse*:*Registry*:*DeviceFrames*'}
+racecheck_filter=${GPU_CHECK_RACECHECK_FILTER:-'*cuda_1threads*:*Reuse*:*DeviceFrames*'}
 prep=${GPU_CHECK_PREP:-$root/.gpu_check}
 cuda_architectures=${GPU_CHECK_CUDA_ARCHITECTURES:-90}
 frame=$prep/frame
@@ -176,9 +180,16 @@ cuda_sanitizer() {
   local sanitizer
   sanitizer=$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)
   [[ -x "$sanitizer" ]] || { echo "no compute-sanitizer in PATH or /usr/local/cuda/bin"; return 1; }
-  local extra=()
+  local extra=() filter=$test_filter
   [[ "$1" == memcheck ]] && extra=(--leak-check full)
-  "$sanitizer" --tool "$1" "${extra[@]}" --error-exitcode 1 "$build/tests/test_backends" --gtest_filter="$test_filter"
+  # racecheck is ~3x slower than memcheck (the whole filter: 209 s on an H200): the cases at one
+  # host thread (the GPU's work does not depend on it) and the device-frame cases.
+  [[ "$1" == racecheck ]] && filter=$racecheck_filter
+  "$sanitizer" --tool "$1" "${extra[@]}" --error-exitcode 1 "$build/tests/test_backends" --gtest_filter="$filter" |
+    tee "$out/$1.raw"
+  local rc=${PIPESTATUS[0]}
+  ((rc == 0)) || return "$rc"
+  grep -Eq '^\[       OK \] .*[Cc]uda' "$out/$1.raw" || { echo "no CUDA test ran under $1"; return 1; }
 }
 
 bench() {
@@ -256,7 +267,7 @@ table() {
 }
 
 # The steps run in child shells (under timeout): they see these.
-export root out backend runs warmups jobs build test_filter prep frame cuda_architectures dry_run
+export root out backend runs warmups jobs build test_filter racecheck_filter prep frame cuda_architectures dry_run
 export -f machine prepare configure build_targets cuda_tests cuda_sanitizer bench libsgm_build libsgm_run
 
 # skip NAME: a step that needs the GPU, in a dry run.
@@ -278,8 +289,6 @@ step build "$( ((dry_run)) && echo 1500 || echo 300)" build_targets
 gpu_step test_backends 180 cuda_tests
 gpu_step test_core 120 "$build/tests/test_core"
 gpu_step test_bench 30 "$build/tests/test_bench"
-gpu_step memcheck 90 cuda_sanitizer memcheck
-gpu_step racecheck 90 cuda_sanitizer racecheck
 gpu_step bench_paths4 120 bench 4 fused,stereo,lidar,half
 gpu_step bench_paths8 90 bench 8 fused,stereo,lidar
 if [[ -d "$prep/libSGM" ]] || ((!dry_run)); then
@@ -292,6 +301,10 @@ gpu_step libsgm_paths4 60 libsgm_run 4
 gpu_step libsgm_paths8 60 libsgm_run 8
 # The LiDAR-gated search on the fused frame (its own log, outside the table: libSGM has no gate).
 gpu_step bench_gated 60 bench 4 fused -gated_search
+# The sanitizers last: they are the slowest steps, and get what is left of the budget after the
+# figures.
+gpu_step memcheck 90 cuda_sanitizer memcheck
+gpu_step racecheck 120 cuda_sanitizer racecheck
 
 {
   echo

@@ -59,7 +59,8 @@ struct StageTimings {
   double medianFilter = 0;
   double confidence = 0;  ///< the core's part (LiDAR distance, texture, combination)
   /// cuda: copies between host and device memory (the stages above are then kernel times, from
-  /// CUDA events; the costs are computed inside aggregatePaths). 0 on the CPU backends.
+  /// CUDA events; the stored matching cost is one kernel, timed as censusCost, lidarCost or
+  /// fuseCosts by the frame's mode). 0 on the CPU backends.
   double transfers = 0;
   double total() const {
     return census + censusCost + verticalCensusCost + lidarCost + fuseCosts + aggregatePaths + selectDisparity +

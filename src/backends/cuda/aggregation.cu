@@ -7,6 +7,11 @@
 // into its own L_r volume, so the rows, columns and diagonals of all directions keep the GPU
 // busy; selection.cu sums them. The arithmetic is cpu_ref's pathCostStep, in int.
 //
+// A row is 1242 steps on KITTI and only 2 x 375 row lines run at once, so the time of a step's
+// serial chain is the time of the stage. The matching cost is read from the volume stored before
+// (cost_volume.cu), kAhead steps ahead of its use: the loads leave the chain, which keeps only
+// the shuffles and the minimum.
+//
 // The gated search (gated_stages.hpp): a disparity outside the pixel's window holds kAbsent in the
 // lane's registers, so that the next step's terms from it (L(p-r, d), L(p-r, d+-1) + P1) never
 // win against min_k L(p-r, k) + P2, which is always present, and the warp's minimum is the
@@ -68,27 +73,87 @@ __device__ bool pathLine(Direction r, int line, int width, int height, int& x, i
   return true;
 }
 
-/// The matching cost computed in the recursion from census strings and LiDAR points.
-struct ComputedCost {
-  CostSettings s;
-  template <int VPL>
-  __device__ void operator()(int x, int y, int firstD, int (&cost)[VPL]) const {
-    const PixelCostContext c = pixelCostContext(s, x, y);
-#pragma unroll
-    for (int k = 0; k < VPL; ++k) cost[k] = matchingCost(s, c, x, y, firstD + k);
-  }
+/// How many steps ahead of its use a lane loads its matching costs and its pixel's window.
+constexpr int kAhead = 4;
+
+/// A lane's VPL matching costs (bytes) as one load: 1, 2 or 4 bytes in an unsigned, else 8 or 16.
+template <int VPL>
+struct CostWord {
+  using type = unsigned;
+};
+template <>
+struct CostWord<8> {
+  using type = uint2;
+};
+template <>
+struct CostWord<16> {
+  using type = uint4;
 };
 
-/// A stored matching-cost volume (the stage test's input).
-struct StoredCost {
-  DeviceVolume<const std::uint8_t> volume;
-  template <int VPL>
-  __device__ void operator()(int x, int y, int firstD, int (&cost)[VPL]) const {
-    const std::uint8_t* c = volume.at(x, y) + firstD;
-#pragma unroll
-    for (int k = 0; k < VPL; ++k) cost[k] = __ldg(c + k);
-  }
+/// What a step reads that does not depend on the recursion: its costs and its window.
+template <int VPL>
+struct StepInputs {
+  typename CostWord<VPL>::type costs{};
+  int windowFirst = 0;
+  int windowEnd = 0;
 };
+
+/// The inputs of the pixel `step` steps along the line from (x0, y0); nothing past its end or for
+/// a lane without disparities (its slots are never stored).
+template <int VPL>
+__device__ __forceinline__ StepInputs<VPL> loadStep(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows,
+                                                    int x0, int y0, Direction r, int step, int length, int firstD,
+                                                    bool active) {
+  StepInputs<VPL> in;
+  in.windowEnd = cost.numDisparities;
+  if (step >= length) return in;
+  const int x = x0 + step * r.dx;
+  const int y = y0 + step * r.dy;
+  if (!windows.empty()) {
+    const std::size_t i = static_cast<std::size_t>(y) * cost.width + x;
+    in.windowFirst = __ldg(windows.first + i);
+    in.windowEnd = in.windowFirst + __ldg(windows.count + i);
+  }
+  if (!active) return in;
+  const std::uint8_t* c = cost.at(x, y) + firstD;  // aligned: D is a multiple of 16, firstD of VPL
+  if constexpr (VPL == 1) {
+    in.costs = __ldg(c);
+  } else if constexpr (VPL == 2) {
+    in.costs = __ldg(reinterpret_cast<const unsigned short*>(c));
+  } else if constexpr (VPL == 4) {
+    in.costs = __ldg(reinterpret_cast<const unsigned*>(c));
+  } else if constexpr (VPL == 8) {
+    in.costs = __ldg(reinterpret_cast<const uint2*>(c));
+  } else {
+    in.costs = __ldg(reinterpret_cast<const uint4*>(c));
+  }
+  return in;
+}
+
+__device__ __forceinline__ int costByte(unsigned word, int k) { return static_cast<int>((word >> (8 * k)) & 0xFFu); }
+
+/// The VPL costs of a load, as ints.
+template <int VPL>
+__device__ __forceinline__ void unpackCosts(const typename CostWord<VPL>::type& w, int (&c)[VPL]) {
+  if constexpr (VPL <= 4) {
+#pragma unroll
+    for (int k = 0; k < VPL; ++k) c[k] = costByte(w, k);
+  } else if constexpr (VPL == 8) {
+#pragma unroll
+    for (int k = 0; k < 4; ++k) {
+      c[k] = costByte(w.x, k);
+      c[k + 4] = costByte(w.y, k);
+    }
+  } else {
+#pragma unroll
+    for (int k = 0; k < 4; ++k) {
+      c[k] = costByte(w.x, k);
+      c[k + 4] = costByte(w.y, k);
+      c[k + 8] = costByte(w.z, k);
+      c[k + 12] = costByte(w.w, k);
+    }
+  }
+}
 
 /// Stores a lane's VPL path costs (uint16) with one vector store where the width allows.
 template <int VPL>
@@ -109,40 +174,45 @@ __device__ __forceinline__ void storeSlots(std::uint16_t* out, const int (&L)[VP
   }
 }
 
-template <int VPL, typename Cost>
+template <int VPL>
 __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
-    aggregateKernel(Cost cost, DeviceWindows windows, int width, int height, int D, int P1, int P2,
+    aggregateKernel(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2,
                     DeviceVolume<std::uint16_t> pathCosts) {
   const int lane = static_cast<int>(threadIdx.x) & (kWarpSize - 1);
   const int line = static_cast<int>(blockIdx.x) * kWarpsPerBlock + static_cast<int>(threadIdx.x) / kWarpSize;
   const Direction r = kDirections[blockIdx.y];
+  const int width = cost.width;
+  const int D = cost.numDisparities;
   int x = 0;
   int y = 0;
   int length = 0;
-  if (!pathLine(r, line, width, height, x, y, length)) return;  // the whole warp leaves together
+  if (!pathLine(r, line, width, cost.height, x, y, length)) return;  // the whole warp leaves together
 
   const int firstD = lane * VPL;
   const bool active = firstD < D;  // all or none of a lane's slots are below D
   std::uint16_t* const volume = pathCosts.data + static_cast<std::size_t>(blockIdx.y) * pathCosts.size();
+  // The next kAhead steps' inputs, in flight while the chain runs (kAhead == 4).
+  const int x0 = x;
+  const int y0 = y;
+  StepInputs<VPL> ahead0 = loadStep<VPL>(cost, windows, x0, y0, r, 0, length, firstD, active);
+  StepInputs<VPL> ahead1 = loadStep<VPL>(cost, windows, x0, y0, r, 1, length, firstD, active);
+  StepInputs<VPL> ahead2 = loadStep<VPL>(cost, windows, x0, y0, r, 2, length, firstD, active);
+  StepInputs<VPL> ahead3 = loadStep<VPL>(cost, windows, x0, y0, r, 3, length, firstD, active);
+  static_assert(kAhead == 4, "the ring above holds kAhead steps");
   int previous[VPL];
   int previousMin = 0;
   for (int step = 0; step < length; ++step, x += r.dx, y += r.dy) {
+    const StepInputs<VPL> now = ahead0;
+    ahead0 = ahead1;
+    ahead1 = ahead2;
+    ahead2 = ahead3;
+    ahead3 = loadStep<VPL>(cost, windows, x0, y0, r, step + kAhead, length, firstD, active);
     int L[VPL];
     int c[VPL];
+    unpackCosts<VPL>(now.costs, c);  // zeros for a lane without disparities
     // This pixel's window (the whole range without the gate).
-    int windowFirst = 0;
-    int windowEnd = D;
-    if (!windows.empty()) {
-      const std::size_t i = static_cast<std::size_t>(y) * width + x;
-      windowFirst = windows.first[i];
-      windowEnd = windowFirst + windows.count[i];
-    }
-    if (active) {
-      cost(x, y, firstD, c);
-    } else {
-#pragma unroll
-      for (int k = 0; k < VPL; ++k) c[k] = 0;
-    }
+    const int windowFirst = now.windowFirst;
+    const int windowEnd = now.windowEnd;
     if (step == 0) {
       // The path starts here: L_r(p, d) = C(p, d).
 #pragma unroll
@@ -186,31 +256,18 @@ int linesOf(int width, int height, int paths) {
   return lines;
 }
 
-template <typename Cost>
-void launchAggregation(const Cost& cost, DeviceWindows windows, int width, int height, int D, int P1, int P2,
-                       int paths, DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
-  const dim3 grid(static_cast<unsigned>((linesOf(width, height, paths) + kWarpsPerBlock - 1) / kWarpsPerBlock),
-                  static_cast<unsigned>(paths));
-  withSlotsPerLane(D, [&](auto slots) {
-    constexpr int VPL = decltype(slots)::value;
-    aggregateKernel<VPL, Cost><<<grid, kWarpsPerBlock * kWarpSize, 0, stream>>>(cost, windows, width, height, D, P1,
-                                                                                P2, pathCosts);
-  });
-  LIDAR_SGM_CUDA_CHECK_LAUNCH("aggregateKernel");
-}
-
 }  // namespace
 
-void aggregatePaths(const CostSettings& settings, DeviceWindows windows, int P1, int P2, int paths,
+void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
                     DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
-  launchAggregation(ComputedCost{settings}, windows, settings.width, settings.height, settings.numDisparities, P1, P2,
-                    paths, pathCosts, stream);
-}
-
-void aggregatePaths(DeviceVolume<const std::uint8_t> cost, int P1, int P2, int paths,
-                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
-  launchAggregation(StoredCost{cost}, DeviceWindows{}, cost.width, cost.height, cost.numDisparities, P1, P2, paths,
-                    pathCosts, stream);
+  const dim3 grid(
+      static_cast<unsigned>((linesOf(cost.width, cost.height, paths) + kWarpsPerBlock - 1) / kWarpsPerBlock),
+      static_cast<unsigned>(paths));
+  withSlotsPerLane(cost.numDisparities, [&](auto slots) {
+    constexpr int VPL = decltype(slots)::value;
+    aggregateKernel<VPL><<<grid, kWarpsPerBlock * kWarpSize, 0, stream>>>(cost, windows, P1, P2, pathCosts);
+  });
+  LIDAR_SGM_CUDA_CHECK_LAUNCH("aggregateKernel");
 }
 
 }  // namespace cuda

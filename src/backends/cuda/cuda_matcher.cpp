@@ -34,7 +34,7 @@ std::string cudaUnavailableReason() {
 }
 
 struct CudaMatcher::FrameImages {
-  CostSettings costs;  // what the path recursion computes the matching cost from
+  CostSettings costs;  // what the matching cost is computed from (cost_volume.cu)
   bool sixteen = false;
   // The cameras as the census reads them (left, right, up): the caller's device memory, or ours.
   DeviceImage<const std::uint8_t> images8[3];
@@ -42,6 +42,7 @@ struct CudaMatcher::FrameImages {
   DeviceImage<std::uint64_t> census[3];
   DeviceImage<std::uint8_t> support, coverage;
   DeviceWindows windows;  // empty: the whole range at every pixel
+  DeviceVolume<std::uint8_t> matchingCost;
   DeviceVolume<std::uint16_t> pathCosts, sum;
   DeviceImage<std::int16_t> raw, best, rightIndex, filtered;
   DeviceImage<std::uint8_t> margin, difference;
@@ -123,6 +124,8 @@ void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageV
   dev.mark(kCensus);
   if (plan.useLidar) cuda::lidarSupport(frame.costs.lidar, frame.support, dev.stream);
   dev.mark(kLidar);
+  cuda::matchingCostVolume(frame.costs, CostPart::Matching, frame.matchingCost, dev.stream);
+  dev.mark(kCosts);
   aggregatePaths(plan, frame);
   dev.mark(kAggregated);
   selectDisparity(plan, frame);
@@ -137,7 +140,7 @@ void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageV
   dev.mark(kDownloaded);
   LIDAR_SGM_CUDA_CHECK(cudaStreamSynchronize(dev.stream));
   unpackResults(plan, disparity, outputOnDevice, out);
-  recordTimings(out.timings);
+  recordTimings(plan, out.timings);
 }
 
 // The buffers every frame uses, whatever its plan (grown only).
@@ -157,6 +160,7 @@ void CudaMatcher::reserveImages(const FramePlan& plan, FrameImages& f) {
   f.range = readbackImage<std::uint8_t>(dev.readback, layout.range, W, H);
   f.confidence = readbackImage<std::uint8_t>(dev.readback, layout.confidence, W, H);
   f.filtered = readbackImage<std::int16_t>(dev.readback, layout.disparity, W, H);
+  f.matchingCost = denseVolume(dev.matchingCost, W, H, plan.D);
   f.pathCosts = denseVolume(dev.pathCosts, W, H, plan.D, plan.params.paths);
   f.sum = denseVolume(dev.sum, W, H, plan.D);
   f.raw = denseImage<std::int16_t>(dev.rawDisparity, W, H);
@@ -247,10 +251,10 @@ void CudaMatcher::censusTransforms(const FramePlan& plan, FrameImages& f) {
   if (plan.upCamera()) f.costs.upCensus = asConst(f.census[2]);
 }
 
-// Eq. 1 with the matching cost (C_S, C_S3, C_L or Eq. 5) computed inside the recursion.
+// Eq. 1 on the matching cost (C_S, C_S3, C_L or Eq. 5) stored before.
 void CudaMatcher::aggregatePaths(const FramePlan& plan, FrameImages& f) {
   const Parameters& p = plan.params;
-  cuda::aggregatePaths(f.costs, f.windows, p.P1, p.P2, p.paths, f.pathCosts, device_->stream);
+  cuda::aggregatePaths(asConst(f.matchingCost), f.windows, p.P1, p.P2, p.paths, f.pathCosts, device_->stream);
 }
 
 // S, the winners and the confidence inputs that need S, read before the check invalidates.
@@ -348,14 +352,22 @@ void CudaMatcher::unpackResults(const FramePlan& plan, ImageView<std::int16_t> d
   take(layout.confidence, out.confidence);
 }
 
-// Kernel time per stage (CUDA events). The costs are computed inside the aggregation, so
-// censusCost, lidarCost's volume and fuseCosts have no time of their own.
-void CudaMatcher::recordTimings(StageTimings& timings) const {
+// Kernel time per stage (CUDA events). The stored matching cost is one kernel for every term: its
+// time goes to the stage that names the frame's cost (censusCost, lidarCost or fuseCosts).
+void CudaMatcher::recordTimings(const FramePlan& plan, StageTimings& timings) const {
   const Device& dev = *device_;
   timings.transfers = dev.ms(kStart, kUploaded) + dev.ms(kConfidence, kDownloaded);
   timings.census = dev.ms(kUploaded, kCensus);
   timings.lidarCost = dev.ms(kCensus, kLidar);
-  timings.aggregatePaths = dev.ms(kLidar, kAggregated);
+  const double costs = dev.ms(kLidar, kCosts);
+  if (plan.mode == MatchMode::Fused) {
+    timings.fuseCosts = costs;
+  } else if (plan.mode == MatchMode::LidarOnly) {
+    timings.lidarCost += costs;
+  } else {
+    timings.censusCost = costs;
+  }
+  timings.aggregatePaths = dev.ms(kCosts, kAggregated);
   timings.selectDisparity = dev.ms(kAggregated, kSelected);
   timings.leftRightCheck = dev.ms(kSelected, kChecked);
   timings.medianFilter = dev.ms(kChecked, kFiltered);

@@ -47,7 +47,7 @@ class CudaMatcher final : public MatcherBackend {
   void downloadResults(const FramePlan& plan, bool outputOnDevice);
   void unpackResults(const FramePlan& plan, ImageView<std::int16_t> disparity, bool outputOnDevice,
                      FrameResults& out);
-  void recordTimings(StageTimings& timings) const;
+  void recordTimings(const FramePlan& plan, StageTimings& timings) const;
 
   std::unique_ptr<Device> device_;
 };

@@ -211,7 +211,7 @@ void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths, A
   const auto c = toDevice(cost);
   auto pathCosts = allocateVolume<std::uint16_t>(cost.width(), cost.height(), cost.numDisparities(),
                                                  static_cast<std::size_t>(paths));
-  aggregatePaths(c.view(), P1, P2, paths, pathCosts.volume, nullptr);
+  aggregatePaths(c.view(), DeviceWindows{}, P1, P2, paths, pathCosts.volume, nullptr);
   auto out = allocateVolume<std::uint16_t>(cost.width(), cost.height(), cost.numDisparities());
   selectDisparity(pathCosts.view(), paths, out.volume, 0, 0, false, DeviceImage<std::int16_t>{},
                   DeviceImage<std::int16_t>{}, nullptr);

@@ -65,8 +65,8 @@ struct DeviceVolume {
   }
 };
 
-/// Everything the matching cost C(p, d) of a frame needs, computed where the path recursion asks
-/// for it (matching_cost.cuh) instead of being stored as a volume.
+/// Everything the matching cost C(p, d) of a frame needs (matching_cost.cuh), from which
+/// cost_volume.cu stores it.
 struct CostSettings {
   int width = 0;
   int height = 0;

@@ -28,13 +28,13 @@ void lidarSupport(DeviceLidar lidar, DeviceImage<std::uint8_t> support, cudaStre
 /// 1 where a point lies within +-1 column and +-rows rows (the left-right check spares it).
 void lidarCoverage(DeviceLidar lidar, int rows, DeviceImage<std::uint8_t> coverage, cudaStream_t stream);
 
-// cost_volume.cu: the matching cost as a volume. The matcher never stores it (the recursion
-// computes it); these exist so that each cost is tested against cpu_ref's volume on its own.
+// cost_volume.cu: the matching cost as a volume, stored once per frame for the path recursion
+// (CostPart::Matching); the parts alone let each cost be tested against cpu_ref's volume.
 enum class CostPart {
   Census,          ///< C_S
   VerticalCensus,  ///< C_V (Triple-SGM)
   Lidar,           ///< C_L
-  Matching,        ///< C as the recursion sees it (settings decide: C_S, C_S3, C_L or Eq. 5)
+  Matching,        ///< C as the matcher uses it (settings decide: C_S, C_S3, C_L or Eq. 5)
 };
 void matchingCostVolume(const CostSettings& settings, CostPart part, DeviceVolume<std::uint8_t> cost,
                         cudaStream_t stream);
@@ -46,13 +46,11 @@ void fuseCosts(DeviceVolume<const std::uint8_t> lidar, DeviceVolume<const std::u
                DeviceImage<const std::uint8_t> support, DeviceImage<const std::uint16_t> weights, int alphaWeight,
                bool stereoCostWithoutLidar, DeviceVolume<std::uint8_t> fused, cudaStream_t stream);
 
-// aggregation.cu: Eq. 1 along `paths` directions (cpu_ref's order), L_r of direction r into
-// pathCosts + r * volume size. The matching cost is computed in the recursion (`settings`) or
-// read from a stored volume (`cost`, for the stage test). With `windows` (the gated search), Eq. 1
-// runs on each pixel's window (gated_stages.hpp) and an entry outside it holds kAbsentPathCost.
-void aggregatePaths(const CostSettings& settings, DeviceWindows windows, int P1, int P2, int paths,
-                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream);
-void aggregatePaths(DeviceVolume<const std::uint8_t> cost, int P1, int P2, int paths,
+// aggregation.cu: Eq. 1 along `paths` directions (cpu_ref's order) on a stored matching-cost
+// volume, L_r of direction r into pathCosts + r * volume size. With `windows` (the gated search),
+// Eq. 1 runs on each pixel's window (gated_stages.hpp) and an entry outside it holds
+// kAbsentPathCost; empty windows: the whole range.
+void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
                     DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream);
 
 /// A path cost or sum outside its pixel's search window (the gated search): no candidate. Every

@@ -26,6 +26,7 @@ enum Mark {
   kUploaded,
   kCensus,
   kLidar,
+  kCosts,
   kAggregated,
   kSelected,
   kChecked,
@@ -55,6 +56,7 @@ struct CudaMatcher::Device {
   SearchWindows hostWindows;
   DeviceBuffer<std::int16_t> windowFirst;
   DeviceBuffer<std::int16_t> windowCount;
+  DeviceBuffer<std::uint8_t> matchingCost;  // C, W x H x D bytes (cost_volume.cu)
   DeviceBuffer<std::uint16_t> pathCosts;  // one L_r volume per path
   DeviceBuffer<std::uint16_t> sum;
   DeviceBuffer<std::int16_t> rawDisparity;

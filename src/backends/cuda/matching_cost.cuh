@@ -1,9 +1,8 @@
 #pragma once
 /// @file matching_cost.cuh  The matching cost C(p, d) on the GPU, one disparity at a time, with
 /// the integer arithmetic of cpu_ref's stages (census_cost.cpp, vertical_census_cost.cpp,
-/// combine_camera_costs.cpp, lidar_cost.cpp, fusion.cpp). The path recursion (aggregation.cu)
-/// calls these for the disparities it is about to aggregate, so no cost volume is ever stored; the
-/// volume kernels (cost_volume.cu) call the same functions so that each cost is tested on its own.
+/// combine_camera_costs.cpp, lidar_cost.cpp, fusion.cpp). cost_volume.cu stores C with them once
+/// per frame for the path recursion (aggregation.cu), and each term alone for the stage tests.
 
 #include <cstdint>
 
