@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include <pcl/common/io.h>
-#include <pcl/io/pcd_io.h>
+#include "field_text.hpp"
+#include "pcd_writer.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -28,10 +28,8 @@ constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
 }  // namespace
 
 void writeBinaryPcd(AtomicFile& out, const pcl::PCLPointCloud2& layout, const std::uint8_t* records) {
-  // PCL's header generator declares exactly the fields and sizes of `packed`.
-  pcl::PCLPointCloud2 packed;
-  packed.width = layout.width;
-  packed.height = layout.height;
+  // The header declares exactly the fields and sizes of the packed records.
+  std::vector<pcl::PCLPointField> packed;
   std::vector<Span> spans;
   std::size_t step = 0;
   for (const pcl::PCLPointField& field : layout.fields) {
@@ -39,7 +37,7 @@ void writeBinaryPcd(AtomicFile& out, const pcl::PCLPointCloud2& layout, const st
     pcl::PCLPointField packedField = field;
     packedField.count = std::max<std::uint32_t>(field.count, 1);
     packedField.offset = static_cast<std::uint32_t>(step);
-    const std::size_t size = static_cast<std::size_t>(pcl::getFieldSize(field.datatype)) * packedField.count;
+    const std::size_t size = static_cast<std::size_t>(fieldValueSize(field.datatype)) * packedField.count;
     if (size == 0) fail("field '" + field.name + "' has an unsupported type (" + std::to_string(field.datatype) + ")");
     if (field.offset + size > layout.point_step) {
       fail("field '" + field.name + "' lies outside the " + std::to_string(layout.point_step) + "-byte point record");
@@ -50,14 +48,10 @@ void writeBinaryPcd(AtomicFile& out, const pcl::PCLPointCloud2& layout, const st
       spans.push_back(Span{field.offset, size});
     }
     step += size;
-    packed.fields.push_back(packedField);
+    packed.push_back(packedField);
   }
   if (step == 0) fail("the cloud has no fields");
-  packed.point_step = static_cast<std::uint32_t>(step);
-  packed.row_step = static_cast<std::uint32_t>(step * layout.width);
-  const std::string header =
-      pcl::PCDWriter().generateHeaderBinary(packed, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity()) +
-      "DATA binary\n";
+  const std::string header = pcdHeader(packed, layout.width, layout.height, /*rgbAsUnsigned=*/false) + "DATA binary\n";
 
   out.write(header);
 

@@ -15,7 +15,8 @@ namespace detail {
 /// Appends to `out` the width x height point records at `records` (each `layout.point_step`
 /// bytes, with `layout.fields`; layout.data is not used) as PCD with "DATA binary", each point's
 /// fields packed one after the other (no padding), viewpoint at the origin: the file PCL's
-/// typed writer (PCDWriter::writeBinary<PointT>) makes. Throws std::runtime_error with the
+/// typed writer (PCDWriter::writeBinary<PointT>) makes, but for rgb's TYPE (F, the field's type,
+/// as PCL's blob writer has it; its typed writer says U). Throws std::runtime_error with the
 /// reason (`out` then removes what was written).
 ///
 /// Why not PCL's blob writer: it maps the file (a full disk then kills the process with

@@ -9,16 +9,12 @@
 #include <stdexcept>
 #include <string>
 
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
-
 #include "binary_pcd_writer.hpp"
 #include "lidar_sgm/io/atomic_file.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/file_access.hpp"
-#include "pcd_reader.hpp"
-#include "pcl_file_writer.hpp"
-#include "ply_reader.hpp"
+#include "pcd_writer.hpp"
+#include "ply_writer.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -29,7 +25,7 @@ namespace {
   throw std::runtime_error("cannot write '" + path + "': " + problem);
 }
 
-// PCL's writers trust the blob's sizes; an inconsistent one would be written past its data.
+// The writers trust the blob's sizes; an inconsistent one would be read past its data.
 void checkWritable(const std::string& path, const pcl::PCLPointCloud2& cloud) {
   if (cloud.fields.empty()) failWrite(path, "the cloud has no fields");
   const std::uint64_t expected = static_cast<std::uint64_t>(cloud.width) * cloud.height * cloud.point_step;
@@ -40,48 +36,16 @@ void checkWritable(const std::string& path, const pcl::PCLPointCloud2& cloud) {
   }
 }
 
-// Floats need 9 significant digits to read back exactly (PCL's default is 8).
-constexpr int kAsciiPrecision = 9;
-
 /// The cloud in `extension`'s file type and `format`, appended to `out`.
 void writeAs(AtomicFile& out, const std::string& extension, CloudFormat format, const pcl::PCLPointCloud2& cloud) {
-  const Eigen::Vector4f origin = Eigen::Vector4f::Zero();
-  const Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-  if (extension == ".pcd" && format == CloudFormat::Binary) {
-    detail::writeBinaryPcd(out, cloud, cloud.data.data());
-    return;
+  if (extension == ".pcd") {
+    switch (format) {
+      case CloudFormat::Binary: detail::writeBinaryPcd(out, cloud, cloud.data.data()); return;
+      case CloudFormat::Compressed: detail::writeCompressedPcd(out, cloud); return;
+      case CloudFormat::Ascii: detail::writeAsciiPcd(out, cloud); return;
+    }
   }
-  if (extension == ".pcd" && format == CloudFormat::Compressed) {
-    // The stream form: PCL's file form maps the file, and a full disk then raises SIGBUS.
-    std::ostringstream bytes;
-    if (pcl::PCDWriter().writeBinaryCompressed(bytes, cloud, origin, orientation) != 0) {
-      throw std::runtime_error("PCL's compressed writer failed");
-    }
-    out.write(bytes.str());
-    return;
-  }
-  const std::uint64_t points = std::uint64_t{cloud.width} * cloud.height;
-  auto verify = [&](const std::uint8_t* bytes, std::size_t size) {
-    try {
-      if (extension == ".pcd") {
-        const detail::PcdContent content = detail::parsePcd("", bytes, size, points);
-        if (std::uint64_t{content.blob.width} * content.blob.height == points) return;
-        throw std::runtime_error("it holds " + std::to_string(content.blob.width * content.blob.height) + " points");
-      }
-      detail::parsePly("", bytes, size, points);
-    } catch (const std::exception& e) {
-      throw std::runtime_error("PCL's writer made an incomplete file (" + std::string(e.what()) + ")");
-    }
-  };
-  detail::writeThroughPcl(out, [&](const std::string& file) {
-    if (extension == ".pcd") return pcl::PCDWriter().writeASCII(file, cloud, origin, orientation, kAsciiPrecision);
-    // range_grid rather than PCL's "camera" element: PCL's own PLY reader reports each camera
-    // property as "not handled" on stderr, while both keep an organized cloud's width x height.
-    if (format == CloudFormat::Ascii) {
-      return pcl::PLYWriter().writeASCII(file, cloud, origin, orientation, kAsciiPrecision, /*use_camera=*/false);
-    }
-    return pcl::PLYWriter().writeBinary(file, cloud, origin, orientation, /*use_camera=*/false);
-  }, verify);
+  detail::writePly(out, cloud, /*binary=*/format != CloudFormat::Ascii);
 }
 
 // Refusals of checkCloudOutput are write errors here (std::runtime_error, as every writeCloud error).
@@ -143,7 +107,6 @@ void checkCloudOutput(const std::string& path, CloudFormat format) {
 void writeCloud(const std::string& path, const pcl::PCLPointCloud2& cloud, CloudFormat format) {
   const std::string extension = checkedExtension(path, format);
   checkWritable(path, cloud);
-  if (extension == ".ply" && cloud.data.empty()) failWrite(path, "PCL cannot write an empty cloud as PLY (use .pcd)");
   writeAtomically(path, [&](AtomicFile& file) { writeAs(file, extension, format, cloud); });
 }
 
@@ -161,7 +124,7 @@ void writeCloudRecords(const std::string& path, const pcl::PCLPointCloud2& layou
     writeAtomically(path, [&](AtomicFile& file) { writeBinaryPcd(file, layout, records); });
     return;
   }
-  // PCL's writers need the points in a PCLPointCloud2.
+  // The other writers take the points in a PCLPointCloud2.
   pcl::PCLPointCloud2 blob = layout;
   blob.data.assign(records, records + recordCount * layout.point_step);
   writeCloud(path, blob, format);

@@ -5,9 +5,7 @@
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/common/io.h>
 #include <pcl/conversions.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
-
+#include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 
 namespace lidar_sgm {
@@ -35,17 +33,11 @@ void write(const std::string& path, const pcl::PointCloud<PointXYZRGBConfidence>
 }  // namespace
 
 MapInput readFrameCloud(const std::string& path) {
-  pcl::PCLPointCloud2 blob;
   const std::string extension = io::lowerExtension(path);
-  int status = -1;
-  if (extension == ".pcd") {
-    status = pcl::io::loadPCDFile(path, blob);
-  } else if (extension == ".ply") {
-    status = pcl::io::loadPLYFile(path, blob);
-  } else {
+  if (extension != ".pcd" && extension != ".ply") {
     throw std::runtime_error("cannot read the cloud '" + path + "' for the map: not a .pcd or .ply file");
   }
-  if (status < 0) throw std::runtime_error("cannot read the cloud '" + path + "' for the map");
+  const pcl::PCLPointCloud2 blob = io::readCloudFields(path);
   if (!hasField(blob, "x") || !hasField(blob, "y") || !hasField(blob, "z")) {
     throw std::runtime_error("the cloud '" + path + "' has no x, y, z fields");
   }

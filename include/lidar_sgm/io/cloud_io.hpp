@@ -1,6 +1,7 @@
 #pragma once
 /// @file cloud_io.hpp  Point cloud files: KITTI velodyne .bin, PCD and PLY in; PCD (binary,
-/// binary-compressed or ASCII) and PLY (binary or ASCII) out (PCL io's writers).
+/// binary-compressed or ASCII) and PLY (binary or ASCII) out, as PCL writes them (our own readers
+/// and writers: the tools load no PCL io, VTK or OpenNI library).
 
 #include <cstddef>
 #include <cstdint>
@@ -49,6 +50,14 @@ pcl::PointCloud<pcl::PointXYZI> readPcdFromBuffer(const void* data, std::size_t 
 pcl::PointCloud<pcl::PointXYZI> readPlyFromBuffer(const void* data, std::size_t size,
                                                   const std::string& source = "<buffer>");
 
+/// Every field of a PCD or PLY file's points as PCL's blob, through the same strict parsers as
+/// readPcdOrPly (the same errors; no field is required): a PCD's fields as the file has them
+/// (packed); a PLY's scalar vertex properties, its red, green, blue (and alpha) bytes packed into
+/// PCL's rgb (rgba) field as PCL's PLY reader packs them, an organized PLY's cells in place with
+/// NaN x, y, z where a cell is empty. For readers that need more than x, y, z and intensity
+/// (colour, confidence); pcl::fromPCLPointCloud2 converts it to a typed cloud.
+pcl::PCLPointCloud2 readCloudFields(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
+
 /// Picks the reader from the extension: .bin, .pcd, .ply (case-insensitive); any other
 /// extension is an error naming the accepted ones.
 pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
@@ -59,8 +68,8 @@ pcl::PointCloud<pcl::PointXYZI> readCloud(const std::string& path, std::uint64_t
 enum class CloudFormat {
   Binary,      ///< PCD "DATA binary" (fields packed, no padding) or PLY binary_little_endian: the fastest
   Compressed,  ///< PCD "DATA binary_compressed" (PCL's LZF): ~3 % smaller for a dense cloud, 10-20x slower
-  Ascii,       ///< text, the slowest and largest: PCD with 9 significant digits (floats read back
-               ///< exactly); PLY with PCL's 6 (its ASCII PLY writer ignores any other precision)
+  Ascii,       ///< text, the slowest and largest: floats with 9 significant digits (they read back
+               ///< exactly), PCD and PLY
 };
 
 /// "binary", "compressed", "ascii".
