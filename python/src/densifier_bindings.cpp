@@ -46,8 +46,8 @@ void copyColors(const Densifier& densifier, const geometry::DenseCloud& cloud, s
 
 /// (M, cols) arrays over the cloud's own vectors, without a copy: the cloud is moved out of the
 /// Densifier (each run makes a new one) into a capsule that the arrays keep alive.
-template <typename T, typename Element>
-py::array_t<T> viewOf(std::vector<Element>& elements, std::size_t cols, const py::capsule& owner) {
+template <typename T, typename Element, typename Allocator>
+py::array_t<T> viewOf(std::vector<Element, Allocator>& elements, std::size_t cols, const py::capsule& owner) {
   static_assert(sizeof(Element) == 3 * sizeof(float) || sizeof(Element) == 2 * sizeof(std::int32_t),
                 "a point is three packed floats, a pixel two packed ints");
   if (elements.empty()) return newArray<T>(0, cols);

@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "cloud_read_error.hpp"
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "text_values.hpp"
 
 namespace lidar_sgm {
@@ -163,6 +164,7 @@ pcl::PointCloud<pcl::PointXYZI> toXyzi(const std::string& path, const pcl::PCLPo
   const FieldReader intensity = intensityReader(path, blob);
 
   pcl::PointCloud<pcl::PointXYZI> cloud;
+  reserveOnHugePages(cloud.points, static_cast<std::size_t>(blob.width) * blob.height);
   cloud.resize(static_cast<std::size_t>(blob.width) * blob.height);
   cloud.width = blob.width;  // resize() leaves the cloud unorganized; keep the file's layout
   cloud.height = blob.height;
@@ -184,6 +186,7 @@ pcl::PointCloud<pcl::PointXYZI> toXyzi(const std::string& path, const pcl::PCLPo
 
 pcl::PointCloud<pcl::PointXYZI> toXyzi(const std::vector<KittiPoint>& points) {
   pcl::PointCloud<pcl::PointXYZI> cloud;
+  reserveOnHugePages(cloud.points, points.size());
   cloud.resize(points.size());
   cloud.width = static_cast<std::uint32_t>(cloud.size());  // resize(0) would leave height 0
   cloud.height = 1;

@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "cloud_read_error.hpp"
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 
 namespace lidar_sgm {
@@ -24,7 +25,9 @@ std::uint64_t cloudFileSize(const std::string& path) {
 }
 
 std::vector<unsigned char> readCloudFileBytes(const std::string& path, std::uint64_t size) {
-  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+  std::vector<unsigned char> bytes;
+  reserveOnHugePages(bytes, static_cast<std::size_t>(size));
+  bytes.resize(static_cast<std::size_t>(size));
   std::ifstream in(path, std::ios::binary);
   if (!in) failCloudRead(path, "cannot open the file");
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));

@@ -4,6 +4,7 @@
 
 #include "cloud_file.hpp"
 #include "cloud_read_error.hpp"
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -37,7 +38,9 @@ void checkKittiBinSize(const std::string& source, std::uint64_t size, std::uint6
 std::vector<KittiPoint> decodeKittiBin(const std::string& source, const unsigned char* bytes, std::uint64_t size,
                                        std::uint64_t maxPoints) {
   checkKittiBinSize(source, size, maxPoints);
-  std::vector<KittiPoint> points(static_cast<std::size_t>(size / kKittiPointBytes));
+  std::vector<KittiPoint> points;
+  reserveOnHugePages(points, static_cast<std::size_t>(size / kKittiPointBytes));
+  points.resize(static_cast<std::size_t>(size / kKittiPointBytes));
   for (std::size_t i = 0; i < points.size(); ++i) {
     const unsigned char* record = bytes + i * kKittiPointBytes;
     KittiPoint& p = points[i];

@@ -408,7 +408,7 @@ TEST(LidarPoints, PointPixelsNameEachPointsPixelInTheCompressedOrder) {
   const LidarPoints points(3, 2, {{1, 0, 16}, {2, 1, 32}, {1, 0, 48}, {0, 1, 20}});
   EXPECT_EQ(points.pointPixels(), (std::vector<int>{1, 1, 3, 5}));
   EXPECT_EQ(points.disparities16(), (std::vector<int>{16, 48, 20, 32}));
-  const std::vector<int>& starts = points.pixelStarts();
+  const auto& starts = points.pixelStarts();
   const std::vector<int>& pixels = points.pointPixels();
   for (int p = 0; p <= 6; ++p) {
     const auto first = std::lower_bound(pixels.begin(), pixels.end(), p) - pixels.begin();

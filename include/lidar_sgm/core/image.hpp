@@ -8,6 +8,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "lidar_sgm/core/huge_page_allocator.hpp"
+
 namespace lidar_sgm {
 
 /// Non-owning view of a row-major 2D image. `stride` is counted in elements, not bytes
@@ -35,7 +37,7 @@ struct ImageView {
   T* row(int y) const { return data + static_cast<std::ptrdiff_t>(y) * stride; }
 };
 
-/// Owned, densely packed image (stride == width).
+/// Owned, densely packed image (stride == width); a large one on transparent huge pages.
 template <typename T>
 class Image {
  public:
@@ -65,7 +67,7 @@ class Image {
  private:
   int width_ = 0;
   int height_ = 0;
-  std::vector<T> pixels_;
+  HugePageVector<T> pixels_;  // a frame-sized image lies on huge pages (huge_page_allocator.hpp)
 };
 
 /// 8-bit color of one pixel (red, green, blue), e.g. the image that colors a dense cloud.

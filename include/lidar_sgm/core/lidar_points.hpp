@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "lidar_sgm/core/image.hpp"
 
 namespace lidar_sgm {
@@ -42,7 +43,7 @@ class LidarPoints {
 
   /// The compressed rows themselves, for a backend that copies them as they are (to a GPU):
   /// pixel (x, y) holds disparities16()[pixelStarts()[y * width() + x] .. pixelStarts()[... + 1]).
-  const std::vector<int>& pixelStarts() const { return pixelStart_; }
+  const HugePageVector<int>& pixelStarts() const { return pixelStart_; }
   const std::vector<int>& disparities16() const { return disparities16_; }
   /// The pixel y * width() + x of each point of disparities16(), in the same (ascending) order:
   /// with it a backend rebuilds pixelStarts() where the points are (8 bytes a point, not 4 a pixel).
@@ -52,7 +53,7 @@ class LidarPoints {
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
   int width_ = 0;
   int height_ = 0;
-  std::vector<int> pixelStart_;      ///< width*height+1 offsets into disparities16_ (CSR)
+  HugePageVector<int> pixelStart_;      ///< width*height+1 offsets into disparities16_ (CSR)
   std::vector<int> disparities16_;   ///< per pixel, in the order the samples were given
   std::vector<int> pointPixels_;     ///< the pixel index of each entry of disparities16_
 };

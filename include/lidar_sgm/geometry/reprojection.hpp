@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/geometry/calibration.hpp"
 
@@ -39,8 +40,8 @@ struct PixelIndex {
 struct DenseCloud {
   int width = 0;   ///< organized: sampled columns; unorganized: number of points
   int height = 0;  ///< organized: sampled rows; unorganized: 1
-  std::vector<Eigen::Vector3f> points;  ///< NaN coordinates for pixels without a point
-  std::vector<PixelIndex> pixels;       ///< same order as points, also for NaN points
+  HugePageVector<Eigen::Vector3f> points;  ///< NaN coordinates for pixels without a point
+  HugePageVector<PixelIndex> pixels;       ///< same order as points, also for NaN points
   bool isDense = true;                  ///< false when a point is NaN
   std::size_t size() const { return points.size(); }
 };

@@ -25,8 +25,8 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-template <typename T>
-void resizeKeep(std::vector<T>& v, std::size_t n) {
+template <typename Vector>
+void resizeKeep(Vector& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 

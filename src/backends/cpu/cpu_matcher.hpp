@@ -118,8 +118,8 @@ class CpuMatcher final : public MatcherBackend {
   PathT* chunkPath(const Frame& frame, int parity, int k, int r);
   std::uint16_t* chunkMin(const Frame& frame, int parity, int k, int r);
   /// Path buffers (bytes) viewed as path elements of type T.
-  template <typename T>
-  static T* as(std::vector<std::uint8_t>& bytes, std::size_t elementOffset = 0) {
+  template <typename T, typename Bytes>
+  static T* as(Bytes& bytes, std::size_t elementOffset = 0) {
     return reinterpret_cast<T*>(bytes.data()) + elementOffset;
   }
   /// C of pixels x0 .. x1-1 of row y (costs.cpp).
@@ -139,17 +139,17 @@ class CpuMatcher final : public MatcherBackend {
   Image<std::uint64_t> leftCensus_;
   Image<std::uint64_t> rightCensus_;
   Image<std::uint64_t> upCensus_;
-  std::vector<std::uint8_t> rightPlanes_;  // the right census as reversed byte planes, per row
+  HugePageVector<std::uint8_t> rightPlanes_;  // the right census as reversed byte planes, per row
   HugeBuffer<std::uint8_t> cost_;        // C of every pixel, from the sweep up to the sweep down
   // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
   // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
-  std::vector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
+  HugePageVector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
   std::size_t pathLayout_ = 0;
   std::vector<std::uint16_t> pathMins_;
   static constexpr int kChunkRows = 4;
-  std::vector<std::uint8_t> chunkPaths_;    // sweep down: a chunk's path rows (slots), two parities
+  HugePageVector<std::uint8_t> chunkPaths_;    // sweep down: a chunk's path rows (slots), two parities
   std::vector<std::uint16_t> chunkMins_;    // ... and their minima
-  std::vector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row
+  HugePageVector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row
   std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
   SearchWindows windows_;  // the gated search's windows (Parameters::gatedSearch)

@@ -1,22 +1,14 @@
 #pragma once
-// A large, uninitialised buffer on 2 MiB transparent huge pages where Linux offers them.
-//
-// Why: the cost volume (60 MB for a KITTI frame) is written once per frame before it is read.
-// On 4 KiB pages the first frame of a process takes ~15,000 page faults to map it (a one-shot
-// `lidar_sgm_densify` pays them every run), and std::vector would also zero it first. With
-// MADV_HUGEPAGE (Debian's default THP mode is "madvise") the same volume maps in ~30 faults.
-// Measured on the project VM, lidar_sgm_densify on a KITTI frame, 12 runs paired against the same
-// tool with a std::vector: median wall 0.47 s vs 0.54 s (ratio 0.90). Elsewhere it is a plain
-// aligned allocation.
+// A large, uninitialised buffer on 2 MiB transparent huge pages (allocateHugePages,
+// lidar_sgm/core/huge_page_allocator.hpp says why): the cost volume, written once per frame before
+// it is read, so neither std::vector's zeroing nor a page fault per 4 KiB is wanted.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdlib>
 #include <memory>
-#include <new>
 
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 
 namespace lidar_sgm {
 namespace cpu {
@@ -31,15 +23,9 @@ class HugeBuffer {
   /// Holds at least n elements afterwards; grows only (the contents are then undefined).
   void reserve(std::size_t n) {
     if (n <= size_) return;
-    constexpr std::size_t kAlignment = std::size_t{2} << 20;
-    const std::size_t bytes = (n * sizeof(T) + kAlignment - 1) / kAlignment * kAlignment;
-    void* memory = std::aligned_alloc(kAlignment, bytes);
-    if (memory == nullptr) throw std::bad_alloc();
-#ifdef __linux__
-    madvise(memory, bytes, MADV_HUGEPAGE);  // a hint: without THP the buffer simply has small pages
-#endif
-    data_.reset(static_cast<T*>(memory));
-    size_ = bytes / sizeof(T);
+    const std::size_t bytes = std::max(n * sizeof(T), kHugePageThreshold);
+    data_.reset(static_cast<T*>(allocateHugePages(bytes)));
+    size_ = (bytes + kHugePageSize - 1) / kHugePageSize * kHugePageSize / sizeof(T);
   }
 
  private:

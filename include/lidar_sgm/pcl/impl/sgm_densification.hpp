@@ -13,6 +13,7 @@
 #include <pcl/console/print.h>
 #include <pcl/type_traits.h>
 
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "lidar_sgm/pcl/sgm_densification.hpp"
 
 namespace lidar_sgm {
@@ -237,6 +238,7 @@ void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
   // From default points: a field this frame does not write (color without an image) must not
   // keep what an earlier frame wrote into a reused output cloud.
   output.clear();
+  reserveOnHugePages(output.points, dense->size());  // a frame's cloud: tens of MB, written once
   output.resize(dense->size());
   output.width = static_cast<std::uint32_t>(dense->width);
   output.height = static_cast<std::uint32_t>(dense->height);

@@ -1,0 +1,98 @@
+// Large buffers on transparent huge pages (lidar_sgm/core/huge_page_allocator.hpp): the blocks are
+// placed and advised as the header says, and hold what is written to them like any vector.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lidar_sgm/core/huge_page_allocator.hpp"
+#include "lidar_sgm/core/image.hpp"
+
+namespace lidar_sgm {
+namespace {
+
+bool alignedToHugePage(const void* p) { return reinterpret_cast<std::uintptr_t>(p) % kHugePageSize == 0; }
+
+// The kernel's flags of the mapping that holds `address` ("hg": advised MADV_HUGEPAGE), from
+// /proc/self/smaps; empty where there is no such file or mapping.
+std::string vmFlagsAt(const void* address) {
+  std::ifstream smaps("/proc/self/smaps");
+  const auto a = reinterpret_cast<std::uintptr_t>(address);
+  std::string line;
+  bool inside = false;
+  while (std::getline(smaps, line)) {
+    std::uintptr_t begin = 0;
+    std::uintptr_t end = 0;
+    char dash = 0;
+    std::istringstream head(line);
+    if (head >> std::hex >> begin >> dash >> end && dash == '-') {
+      inside = a >= begin && a < end;
+    } else if (inside && line.rfind("VmFlags:", 0) == 0) {
+      return line.substr(8);
+    }
+  }
+  return {};
+}
+
+// Whether this kernel offers huge pages to a process that asks (THP mode "always" or "madvise").
+bool kernelAdvisesHugePages() {
+  std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string text;
+  std::getline(mode, text);
+  return text.find("[always]") != std::string::npos || text.find("[madvise]") != std::string::npos;
+}
+
+bool advised(const void* address) { return vmFlagsAt(address).find(" hg") != std::string::npos; }
+
+TEST(HugePages, LargeBlocksAreAlignedAndAdvisedSmallOnesAreNot) {
+  HugePageVector<std::uint16_t> large(kHugePageThreshold / sizeof(std::uint16_t) + 7, 3);
+  ASSERT_TRUE(alignedToHugePage(large.data()));
+  EXPECT_EQ(large.front(), 3);
+  EXPECT_EQ(large.back(), 3);
+  std::vector<std::uint8_t> beside(64 << 10);  // an ordinary block from the same heap
+  HugePageVector<std::uint8_t> small(kHugePageThreshold - 1, 5);
+  EXPECT_EQ(small[small.size() - 1], 5);
+  if (!kernelAdvisesHugePages()) GTEST_SKIP() << "this kernel offers no transparent huge pages";
+  EXPECT_TRUE(advised(large.data())) << vmFlagsAt(large.data());
+  EXPECT_FALSE(advised(beside.data())) << vmFlagsAt(beside.data());
+}
+
+TEST(HugePages, VectorsGrowCopyAndCompareLikeAnyVector) {
+  HugePageVector<int> v;
+  for (int i = 0; i < 600000; ++i) v.push_back(i);  // crosses the threshold while growing
+  const HugePageVector<int> copy = v;
+  EXPECT_EQ(copy, v);
+  EXPECT_EQ(copy[599999], 599999);
+  v.resize(10);
+  v.shrink_to_fit();  // back below the threshold: freed the way it was allocated
+  EXPECT_EQ(v.back(), 9);
+}
+
+TEST(HugePages, AFrameSizedImageLiesOnHugePages) {
+  Image<std::uint64_t> census(1242, 375);
+  EXPECT_TRUE(alignedToHugePage(census.data()));
+  census(1241, 374) = 42;
+  EXPECT_EQ(census.view()(1241, 374), 42u);
+  Image<std::uint8_t> thumbnail(64, 48, 1);
+  EXPECT_EQ(thumbnail(63, 47), 1);
+}
+
+TEST(HugePages, ReserveOnHugePagesAdvisesAnotherAllocatorsBlock) {
+  std::vector<float> cloud;
+  reserveOnHugePages(cloud, 3 * kHugePageSize / sizeof(float));
+  ASSERT_GE(cloud.capacity(), 3 * kHugePageSize / sizeof(float));
+  // The first whole huge page inside the block.
+  const auto begin = reinterpret_cast<std::uintptr_t>(cloud.data());
+  const auto firstPage = reinterpret_cast<const void*>((begin + kHugePageSize - 1) / kHugePageSize * kHugePageSize);
+  cloud.assign(cloud.capacity(), 1.5f);
+  EXPECT_EQ(cloud.back(), 1.5f);
+  if (!kernelAdvisesHugePages()) GTEST_SKIP() << "this kernel offers no transparent huge pages";
+  EXPECT_TRUE(advised(firstPage)) << vmFlagsAt(firstPage);
+}
+
+}  // namespace
+}  // namespace lidar_sgm
