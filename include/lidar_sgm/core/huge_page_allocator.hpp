@@ -22,23 +22,68 @@
 #include <sys/mman.h>
 #endif
 
+// Under AddressSanitizer the blocks come from its allocator instead (unadvised), so that it still
+// checks every access to them.
+#if defined(__SANITIZE_ADDRESS__)
+#define LIDAR_SGM_HUGE_PAGES_MAPPED 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define LIDAR_SGM_HUGE_PAGES_MAPPED 0
+#endif
+#endif
+#if !defined(LIDAR_SGM_HUGE_PAGES_MAPPED) && defined(__linux__)
+#define LIDAR_SGM_HUGE_PAGES_MAPPED 1
+#elif !defined(LIDAR_SGM_HUGE_PAGES_MAPPED)
+#define LIDAR_SGM_HUGE_PAGES_MAPPED 0
+#endif
+
 namespace lidar_sgm {
 
 /// Blocks this large or larger are placed on huge pages (a 2 MiB page holds at least half data).
 constexpr std::size_t kHugePageThreshold = std::size_t{1} << 20;
 constexpr std::size_t kHugePageSize = std::size_t{2} << 20;
 
-/// `bytes` (>= kHugePageThreshold) rounded up to whole 2 MiB pages, 2 MiB aligned and advised as
-/// huge pages; its contents are undefined. Release it with std::free. Throws std::bad_alloc.
-inline void* allocateHugePages(std::size_t bytes) {
+/// `bytes` rounded up to whole 2 MiB pages.
+inline std::size_t hugePageBytes(std::size_t bytes) {
   const std::size_t rounded = (bytes + kHugePageSize - 1) / kHugePageSize * kHugePageSize;
   if (rounded < bytes) throw std::bad_alloc();
+  return rounded;
+}
+
+/// hugePageBytes(bytes) of zeroed memory, 2 MiB aligned and advised as huge pages, mapped for this
+/// block alone: the advice leaves with the block (inside malloc's heap it would outlive the block
+/// and put later small blocks on huge pages too). Release it with freeHugePages. Throws
+/// std::bad_alloc.
+inline void* allocateHugePages(std::size_t bytes) {
+  const std::size_t rounded = hugePageBytes(bytes);
+#if LIDAR_SGM_HUGE_PAGES_MAPPED
+  // One page more than needed, then the unaligned ends given back.
+  const std::size_t span = rounded + kHugePageSize;
+  void* raw = mmap(nullptr, span, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) throw std::bad_alloc();
+  const auto begin = reinterpret_cast<std::uintptr_t>(raw);
+  const std::uintptr_t aligned = (begin + kHugePageSize - 1) / kHugePageSize * kHugePageSize;
+  if (aligned > begin) munmap(raw, aligned - begin);
+  const std::uintptr_t end = begin + span;
+  if (end > aligned + rounded) munmap(reinterpret_cast<void*>(aligned + rounded), end - (aligned + rounded));
+  madvise(reinterpret_cast<void*>(aligned), rounded, MADV_HUGEPAGE);  // a hint: without THP, small pages
+  return reinterpret_cast<void*>(aligned);
+#else
   void* memory = std::aligned_alloc(kHugePageSize, rounded);
   if (memory == nullptr) throw std::bad_alloc();
-#ifdef __linux__
-  madvise(memory, rounded, MADV_HUGEPAGE);  // a hint: where THP is off the block has small pages
-#endif
   return memory;
+#endif
+}
+
+/// Releases a block of allocateHugePages(bytes).
+inline void freeHugePages(void* block, std::size_t bytes) noexcept {
+  if (block == nullptr) return;
+#if LIDAR_SGM_HUGE_PAGES_MAPPED
+  munmap(block, (bytes + kHugePageSize - 1) / kHugePageSize * kHugePageSize);
+#else
+  (void)bytes;
+  std::free(block);
+#endif
 }
 
 /// Advises the whole 2 MiB pages inside [data, data + bytes) as huge pages, for a block someone
@@ -83,7 +128,7 @@ class HugePageAllocator {
   }
   void deallocate(T* p, std::size_t n) noexcept {
     if (huge(n)) {
-      std::free(p);
+      freeHugePages(p, n * sizeof(T));
     } else {
       std::allocator<T>().deallocate(p, n);
     }

@@ -23,14 +23,16 @@ class HugeBuffer {
   /// Holds at least n elements afterwards; grows only (the contents are then undefined).
   void reserve(std::size_t n) {
     if (n <= size_) return;
-    const std::size_t bytes = std::max(n * sizeof(T), kHugePageThreshold);
+    const std::size_t bytes = hugePageBytes(n * sizeof(T));
     data_.reset(static_cast<T*>(allocateHugePages(bytes)));
-    size_ = (bytes + kHugePageSize - 1) / kHugePageSize * kHugePageSize / sizeof(T);
+    data_.get_deleter().bytes = bytes;
+    size_ = bytes / sizeof(T);
   }
 
  private:
   struct Free {
-    void operator()(T* p) const { std::free(p); }
+    std::size_t bytes = 0;
+    void operator()(T* p) const { freeHugePages(p, bytes); }
   };
   std::unique_ptr<T, Free> data_;
   std::size_t size_ = 0;
