@@ -248,6 +248,21 @@ std::vector<DensifierOption> makeTable() {
                  c.hiddenLidar.witnessScale = static_cast<float>(parseOptionNumber("hidden_lidar_scale", s));
                },
                [](const C& c) { return number(c.hiddenLidar.witnessScale); }});
+  t.push_back({"no_lidar_anchor", K::Flag, kNoValue, G::Filters, S::Disparity,
+               "with LiDAR: keep the matcher's own sub-pixel disparity in the far scene (default: each pixel at most " +
+                   number(d.lidarAnchor.maxDisparity) +
+                   " px takes the mean offset of the LiDAR points on its surface within +-" +
+                   std::to_string(d.lidarAnchor.halfWidth) + " columns, +-" + std::to_string(d.lidarAnchor.halfHeight) +
+                   " rows)",
+               [](C& c, const std::string& s) { c.lidarAnchor.enabled = !flagValue("no_lidar_anchor", s); },
+               [](const C& c) { return flagText(!c.lidarAnchor.enabled); }});
+  t.push_back({"lidar_anchor_max_disparity", K::Number, "PX", G::Filters, S::Disparity,
+               "the LiDAR anchors the sub-pixel disparity of pixels at most PX px (the far scene; KITTI: 20 px is "
+               "~19 m), in [0, 1024]",
+               [](C& c, const std::string& s) {
+                 c.lidarAnchor.maxDisparity = parseOptionNumber("lidar_anchor_max_disparity", s);
+               },
+               [](const C& c) { return number(c.lidarAnchor.maxDisparity); }});
   t.push_back({"lidar_consistency", K::Flag, kNoValue, G::Filters, S::Disparity,
                "fused: leave out of the matching the LiDAR points the stereo pair contradicts (moving objects, glass; "
                "KITTI142: foreground error 9.1 -> 6.6 %, but P1-P3 lose 0.2-0.4 points) (default: off)",

@@ -8,6 +8,7 @@
 
 #include "lidar_sgm/geometry/scan_extent.hpp"
 #include "lidar_sgm/pipeline/hidden_lidar.hpp"
+#include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "core/half_scale.hpp"
 #include "pipeline/post_matcher_passes.hpp"
@@ -228,6 +229,10 @@ void Densifier::match(const LidarPoints* lidar) {
   }
   filterStats_ = useLidar ? passes_->applyOutputFilters(disparity_.view(), projected_.samples, left, config_.filters)
                           : OutputFilterStats{};
+  // The far scene's sub-pixel disparity from the points left in the matching (lidar_anchor.hpp).
+  filterStats_.anchored = useLidar ? anchorToLidar(disparity_.view(), hidden + inconsistent > 0 ? keptSamples_ : projected_.samples,
+                                                   config_.lidarAnchor, anchorBuffers_)
+                                   : 0;
   filterStats_.inconsistentLidar = inconsistent;
   filterStats_.hiddenLidar = hidden;
   // The matcher's confidence, 0 where a later step removed the disparity; then the threshold.

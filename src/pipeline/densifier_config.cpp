@@ -33,6 +33,7 @@ std::string validationError(const DensifierConfig& c) {
     validate(c.filters.outliers);
     validate(c.lidarConsistency);
     validate(c.hiddenLidar);
+    validate(c.lidarAnchor);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }

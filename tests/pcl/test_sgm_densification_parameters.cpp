@@ -38,12 +38,13 @@ constexpr std::size_t fieldCount() {
 
 // A new field of the configuration is compared below (and gets an entry in the option table,
 // config_options.cpp, when a front end sets it).
-static_assert(fieldCount<DensifierConfig>() == 13, "DensifierConfig changed: compare the new field here");
+static_assert(fieldCount<DensifierConfig>() == 14, "DensifierConfig changed: compare the new field here");
 static_assert(fieldCount<Parameters>() == 24, "Parameters changed: compare the new field here");
 static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: compare it here");
 static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: compare it here");
 static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: compare it here");
 static_assert(fieldCount<HiddenLidarOptions>() == 7, "HiddenLidarOptions changed: compare it here");
+static_assert(fieldCount<LidarAnchorOptions>() == 7, "LidarAnchorOptions changed: compare it here");
 
 void expectEqual(const Parameters& a, const Parameters& b) {
   EXPECT_EQ(a.minDisparity, b.minDisparity);
@@ -112,6 +113,13 @@ void expectEqual(const DensifierConfig& a, const DensifierConfig& b) {
   EXPECT_EQ(a.hiddenLidar.supportHalfWidth, b.hiddenLidar.supportHalfWidth);
   EXPECT_EQ(a.hiddenLidar.supportHalfHeight, b.hiddenLidar.supportHalfHeight);
   EXPECT_EQ(a.hiddenLidar.witnessScale, b.hiddenLidar.witnessScale);
+  EXPECT_EQ(a.lidarAnchor.enabled, b.lidarAnchor.enabled);
+  EXPECT_EQ(a.lidarAnchor.maxDisparity, b.lidarAnchor.maxDisparity);
+  EXPECT_EQ(a.lidarAnchor.halfWidth, b.lidarAnchor.halfWidth);
+  EXPECT_EQ(a.lidarAnchor.halfHeight, b.lidarAnchor.halfHeight);
+  EXPECT_EQ(a.lidarAnchor.sigma, b.lidarAnchor.sigma);
+  EXPECT_EQ(a.lidarAnchor.agreement, b.lidarAnchor.agreement);
+  EXPECT_EQ(a.lidarAnchor.surfaceGap, b.lidarAnchor.surfaceGap);
   EXPECT_EQ(a.pairCheck, b.pairCheck);
   EXPECT_EQ(a.computeCloud, b.computeCloud);
 }

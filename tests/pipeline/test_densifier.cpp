@@ -14,6 +14,7 @@
 #include "common/synthetic_stereo.hpp"
 #include "geometry/geometry_test_helpers.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
+#include "lidar_sgm/pipeline/lidar_anchor.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -97,6 +98,11 @@ TEST(Densifier, FusedDisparityIsTheMatchersOnTheProjectedScan) {
   const LidarPoints lidar = densifier.projected().lidarPoints();
   Image<std::int16_t> expected(kWidth, kHeight);
   matcher->compute(s.stereo.left.view(), s.stereo.right.view(), &lidar, expected.view());
+  // Then the far scene's sub-pixel disparity anchored to the scan (the plane lies within 20 px).
+  LidarAnchorBuffers buffers;
+  const std::size_t anchored = anchorToLidar(expected.view(), densifier.projected().samples, LidarAnchorOptions{}, buffers);
+  EXPECT_GT(anchored, 0u);
+  EXPECT_EQ(densifier.filterStats().anchored, anchored);
   expectSameImage(densifier.disparity(), expected);
 }
 

@@ -234,6 +234,7 @@ class Densifier {
   Image<std::uint16_t> witnessLeft16_, witnessRight16_;
   Image<std::int16_t> witnessHalfDisparity_;
   std::vector<LidarSample> keptSamples_;  ///< the points left in the matching, buffer reused per frame
+  LidarAnchorBuffers anchorBuffers_;     ///< lidar_anchor.hpp's sums, reused per frame
   Image<std::int16_t> disparity_;
   Image<float> depth_;
   Image<std::uint8_t> confidence_;

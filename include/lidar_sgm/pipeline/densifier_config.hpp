@@ -12,6 +12,7 @@
 #include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
 #include "lidar_sgm/pipeline/hidden_lidar.hpp"
+#include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/lidar_consistency.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
@@ -56,6 +57,8 @@ struct DensifierConfig {
   /// Fused modes: the LiDAR points a stereo-only match sees a nearer surface in front of are left
   /// out of the matching.
   HiddenLidarOptions hiddenLidar;
+  /// Modes with LiDAR: the far scene's sub-pixel disparity anchored to the agreeing LiDAR points.
+  LidarAnchorOptions lidarAnchor;
   /// Refuse a stereo pair that looks swapped (pair_orientation.hpp) instead of matching it.
   bool pairCheck = true;
   /// Also fill the depth image and the dense cloud; off, a run stops at the disparity.

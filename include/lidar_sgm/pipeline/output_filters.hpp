@@ -22,6 +22,7 @@ struct OutputFilterStats {
   std::size_t outliers = 0;
   std::size_t inconsistentLidar = 0;  ///< LiDAR points left out of the matching (lidar_consistency.hpp)
   std::size_t hiddenLidar = 0;        ///< LiDAR points left out of the matching (hidden_lidar.hpp)
+  std::size_t anchored = 0;           ///< pixels the LiDAR moved by a sub-pixel amount (lidar_anchor.hpp)
 };
 
 }  // namespace lidar_sgm
