@@ -64,11 +64,12 @@ WholeFrame loadKitti2015LidarFrame(const std::string& dataRoot, const std::strin
 
 WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
                                         const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups,
-                                        bool hiddenLidar, float witnessScale) {
+                                        bool hiddenLidar, float witnessScale, bool lidarAnchor) {
   Densifier densifier;  // the tools' defaults: DensifierConfig as constructed
   DensifierConfig config = densifier.config();
   config.hiddenLidar.enabled = hiddenLidar;
   config.hiddenLidar.witnessScale = witnessScale;
+  config.lidarAnchor.enabled = lidarAnchor;
   densifier.setConfig(config);
   densifier.setBackend(backend);
   const int threads = matcher.threads;

@@ -55,7 +55,8 @@ struct WholeFrameMeasurement {
 /// `witnessScale` is its witness's scale (HiddenLidarOptions::witnessScale).
 WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
                                         const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups,
-                                        bool hiddenLidar = true, float witnessScale = 0.5f);
+                                        bool hiddenLidar = true, float witnessScale = 0.5f,
+                                        bool lidarAnchor = true);
 
 }  // namespace bench
 }  // namespace lidar_sgm

@@ -56,6 +56,7 @@ struct Options {
   int paths = 4;
   bool hiddenLidar = true;  ///< the whole frame's hidden-LiDAR filter (-no_hidden_lidar_filter: off)
   float witnessScale = 0.5f;  ///< its witness's scale (-hidden_lidar_scale)
+  bool lidarAnchor = true;    ///< the whole frame's LiDAR-anchored sub-pixel disparity (-no_lidar_anchor: off)
   Parameters gate;  ///< its gatedSearch, gatedSearchMargin and gatedSearchRows: every configuration's
   std::vector<std::string> configs;  ///< keys of the configurations to run; empty: all
   bool synthetic = false;
@@ -97,6 +98,7 @@ void printUsage(const char* program) {
       "                          LiDAR-gated search (Parameters::gatedSearch; default off, M 8, R 6)\n"
       "  -no_hidden_lidar_filter the whole frame without the hidden-LiDAR filter (its stereo witness)\n"
       "  -hidden_lidar_scale S   the filter's stereo witness at scale S: 0.5 (default), 0.25 or 1\n"
+      "  -no_lidar_anchor        the whole frame without the LiDAR-anchored sub-pixel disparity\n"
       "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n"
       "  -h, --help              this help\n"
       "  --version               the tool's name and version\n"
@@ -120,7 +122,7 @@ apps::Arguments parseArguments(int argc, char** argv) {
                          {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
                           "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame",
                           "gated_search_margin", "gated_search_rows", "hidden_lidar_scale"},
-                         {"synthetic", "growth", "gated_search", "no_hidden_lidar_filter"});
+                         {"synthetic", "growth", "gated_search", "no_hidden_lidar_filter", "no_lidar_anchor"});
 }
 
 Options optionsFrom(const apps::Arguments& args) {
@@ -148,6 +150,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.growth = args.has("growth");
   o.gate.gatedSearch = args.has("gated_search");
   o.hiddenLidar = !args.has("no_hidden_lidar_filter");
+  o.lidarAnchor = !args.has("no_lidar_anchor");
   o.witnessScale = static_cast<float>(args.number("hidden_lidar_scale", o.witnessScale));
   o.gate.gatedSearchMargin = args.integer("gated_search_margin", o.gate.gatedSearchMargin);
   o.gate.gatedSearchRows = args.integer("gated_search_rows", o.gate.gatedSearchRows);
@@ -464,6 +467,7 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
                       const std::vector<std::string>& keys) {
   const int threads = effectiveThreads(base);
   if (!o.hiddenLidar) std::printf("\nWhole frame without the hidden-LiDAR filter (-no_hidden_lidar_filter).");
+  if (!o.lidarAnchor) std::printf("\nWhole frame without the LiDAR-anchored sub-pixel disparity (-no_lidar_anchor).");
   if (o.hiddenLidar && o.witnessScale != 0.5f) {
     std::printf("\nWhole frame with the hidden-LiDAR filter's witness at scale %g (-hidden_lidar_scale).",
                 static_cast<double>(o.witnessScale));
@@ -491,7 +495,7 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
     }
     const WholeFrameMeasurement m =
         measureWholeFrame(whole, backend, base, scale, sgbmPair, sgbm, o.runs, o.warmups, o.hiddenLidar,
-                          o.witnessScale);
+                          o.witnessScale, o.lidarAnchor);
     const double peak = peakRssMiB();
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %d | %s | %s (%s, %d disp.) | %.2f [%.2f, %.2f] |\n",
                 config.first.c_str(), ms(m.frameMs).c_str(), ms(m.projectMs).c_str(), ms(m.matchMs).c_str(),

@@ -41,8 +41,7 @@ std::size_t anchorToLidar(ImageView<std::int16_t> disparity, const std::vector<L
   const int agreement = x16(o.agreement);
   const int gap = x16(o.surfaceGap);
   const int kw = 2 * o.halfWidth + 1;
-  // Weights in 1/1024: a window holds at most 33 x 33 points, each residual at most 128 x16 units,
-  // so the sums stay below 2^31.
+  // Weights in 1/1024, 64-bit sums: any number of points may share a window.
   std::vector<int> weights(static_cast<std::size_t>(kw) * (2 * o.halfHeight + 1));
   for (int dy = -o.halfHeight; dy <= o.halfHeight; ++dy) {
     for (int dx = -o.halfWidth; dx <= o.halfWidth; ++dx) {
@@ -50,32 +49,52 @@ std::size_t anchorToLidar(ImageView<std::int16_t> disparity, const std::vector<L
           static_cast<int>(std::lround(1024.0 * std::exp(-(dx * dx + dy * dy) / (2.0 * o.sigma * o.sigma))));
     }
   }
-  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  // Only the rows within reach of a point that can anchor anything are cleared and read.
+  const auto anchors = [&](const LidarSample& s, int& residual, int& dq) {
+    if (s.x < 0 || s.y < 0 || s.x >= w || s.y >= h) return false;
+    dq = disparity(s.x, s.y);
+    // A point on a near surface reaches no far pixel of its own surface (|d(q) - d(p)| <= gap).
+    if (!isValid(dq) || dq > maxD + gap) return false;
+    residual = s.disparity16 - dq;
+    return std::abs(residual) <= agreement;
+  };
+  int firstRow = h;
+  int lastRow = -1;
+  for (const LidarSample& s : samples) {
+    int residual = 0;
+    int dq = 0;
+    if (!anchors(s, residual, dq)) continue;
+    firstRow = std::min(firstRow, std::max(0, s.y - o.halfHeight));
+    lastRow = std::max(lastRow, std::min(h - 1, s.y + o.halfHeight));
+  }
+  if (lastRow < firstRow) return 0;
+  // The sums cover rows firstRow .. lastRow only.
+  const std::size_t pixels = static_cast<std::size_t>(lastRow - firstRow + 1) * w;
   buffers.weightedResidual.assign(pixels, 0);
   buffers.weight.assign(pixels, 0);
   for (const LidarSample& s : samples) {
-    if (s.x < 0 || s.y < 0 || s.x >= w || s.y >= h) continue;
-    const int dq = disparity(s.x, s.y);
-    // A point on a near surface reaches no far pixel of its own surface (|d(q) - d(p)| <= gap).
-    if (!isValid(dq) || dq > maxD + gap) continue;
-    const int r = s.disparity16 - dq;
-    if (std::abs(r) > agreement) continue;
+    int r = 0;
+    int dq = 0;
+    if (!anchors(s, r, dq)) continue;
+    const int x0 = std::max(0, s.x - o.halfWidth);
+    const int x1 = std::min(w - 1, s.x + o.halfWidth);
     for (int y = std::max(0, s.y - o.halfHeight); y <= std::min(h - 1, s.y + o.halfHeight); ++y) {
-      const int* weightRow = weights.data() + static_cast<std::size_t>(y - s.y + o.halfHeight) * kw;
-      for (int x = std::max(0, s.x - o.halfWidth); x <= std::min(w - 1, s.x + o.halfWidth); ++x) {
-        const int dp = disparity(x, y);
+      const int* weightRow = weights.data() + static_cast<std::size_t>(y - s.y + o.halfHeight) * kw + o.halfWidth - s.x;
+      const std::int16_t* row = &disparity(0, y);
+      std::int64_t* sumRow = buffers.weightedResidual.data() + static_cast<std::size_t>(y - firstRow) * w;
+      std::int64_t* weightSumRow = buffers.weight.data() + static_cast<std::size_t>(y - firstRow) * w;
+      for (int x = x0; x <= x1; ++x) {
+        const int dp = row[x];
         if (!isValid(dp) || dp > maxD || std::abs(dp - dq) > gap) continue;
-        const int wt = weightRow[x - s.x + o.halfWidth];
-        const std::size_t i = static_cast<std::size_t>(y) * w + x;
-        buffers.weightedResidual[i] += wt * r;
-        buffers.weight[i] += wt;
+        sumRow[x] += weightRow[x] * r;
+        weightSumRow[x] += weightRow[x];
       }
     }
   }
   std::size_t moved = 0;
-  for (int y = 0; y < h; ++y) {
+  for (int y = firstRow; y <= lastRow; ++y) {
     for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * w + x;
+      const std::size_t i = static_cast<std::size_t>(y - firstRow) * w + x;
       if (buffers.weight[i] == 0) continue;
       const int correction = roundedQuotient(buffers.weightedResidual[i], buffers.weight[i]);
       const int d = disparity(x, y) + correction;

@@ -106,6 +106,17 @@ TEST(LidarAnchor, OffWhenDisabledOrWithoutPointsAndOrderFree) {
   EXPECT_TRUE(std::equal(c.data(), c.data() + kWidth * kHeight, start.data()));
 }
 
+TEST(LidarAnchor, AMillionPointsInOnePixelAreStillAMean) {
+  // 64-bit sums: no number of points sharing a window wraps them around.
+  Image<std::int16_t> d = plane(10 * 16);
+  const std::vector<LidarSample> samples(1000000, LidarSample{20, 11, 10 * 16 + 16});  // all 1 px nearer
+  LidarAnchorBuffers buffers;
+  anchorToLidar(d.view(), samples, LidarAnchorOptions{}, buffers);
+  EXPECT_EQ(d(20, 11), 11 * 16);
+  EXPECT_EQ(d(24, 16), 11 * 16);  // the window's corner
+  EXPECT_EQ(d(25, 11), 10 * 16);  // outside it
+}
+
 TEST(LidarAnchor, ImpossibleOptionsAreRefusedByName) {
   const auto refused = [](void (*change)(LidarAnchorOptions&), const char* field) {
     LidarAnchorOptions o;
