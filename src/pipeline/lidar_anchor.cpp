@@ -79,15 +79,16 @@ std::size_t anchorToLidar(ImageView<std::int16_t> disparity, const std::vector<L
     const int x0 = std::max(0, s.x - o.halfWidth);
     const int x1 = std::min(w - 1, s.x + o.halfWidth);
     for (int y = std::max(0, s.y - o.halfHeight); y <= std::min(h - 1, s.y + o.halfHeight); ++y) {
-      const int* weightRow = weights.data() + static_cast<std::size_t>(y - s.y + o.halfHeight) * kw + o.halfWidth - s.x;
+      const int* weightRow = weights.data() + static_cast<std::size_t>(y - s.y + o.halfHeight) * kw;
       const std::int16_t* row = &disparity(0, y);
       std::int64_t* sumRow = buffers.weightedResidual.data() + static_cast<std::size_t>(y - firstRow) * w;
       std::int64_t* weightSumRow = buffers.weight.data() + static_cast<std::size_t>(y - firstRow) * w;
       for (int x = x0; x <= x1; ++x) {
         const int dp = row[x];
         if (!isValid(dp) || dp > maxD || std::abs(dp - dq) > gap) continue;
-        sumRow[x] += weightRow[x] * r;
-        weightSumRow[x] += weightRow[x];
+        const int weight = weightRow[x - s.x + o.halfWidth];
+        sumRow[x] += weight * r;
+        weightSumRow[x] += weight;
       }
     }
   }
