@@ -113,8 +113,8 @@ TEST(LidarAnchor, AMillionPointsInOnePixelAreStillAMean) {
   LidarAnchorBuffers buffers;
   anchorToLidar(d.view(), samples, LidarAnchorOptions{}, buffers);
   EXPECT_EQ(d(20, 11), 11 * 16);
-  EXPECT_EQ(d(24, 16), 11 * 16);  // the window's corner
-  EXPECT_EQ(d(25, 11), 10 * 16);  // outside it
+  EXPECT_EQ(d(22, 13), 11 * 16);  // within reach of the Gaussian
+  EXPECT_EQ(d(25, 11), 10 * 16);  // outside the window
 }
 
 TEST(LidarAnchor, ImpossibleOptionsAreRefusedByName) {
