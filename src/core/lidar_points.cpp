@@ -5,14 +5,22 @@
 
 namespace lidar_sgm {
 
-LidarPoints::LidarPoints(int width, int height, const std::vector<LidarSample>& samples)
-    : width_(width), height_(height) {
+LidarPoints::LidarPoints(int width, int height, const std::vector<LidarSample>& samples) {
+  assign(width, height, samples);
+}
+
+void LidarPoints::assign(int width, int height, const std::vector<LidarSample>& samples) {
+  width_ = 0;  // empty until the samples are checked: a throw leaves no half-built points
+  height_ = 0;
+  disparities16_.clear();
+  pointPixels_.clear();
   if (width <= 0 || height <= 0) {
     std::ostringstream os;
     os << "LiDAR points: image size " << width << "x" << height << " is empty";
     throw std::invalid_argument(os.str());
   }
-  pixelStart_.assign(static_cast<std::size_t>(width) * height + 1, 0);
+  pixelStart_.assign(static_cast<std::size_t>(width) * height + 1, 0);  // reuses the capacity
+  const auto pixelOf = [width](int x, int y) { return static_cast<std::size_t>(y) * width + x; };
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const LidarSample& s = samples[i];
     if (s.x < 0 || s.x >= width || s.y < 0 || s.y >= height || s.disparity16 <= 0) {
@@ -24,18 +32,24 @@ LidarPoints::LidarPoints(int width, int height, const std::vector<LidarSample>& 
                                       std::to_string(height) + " image");
       throw std::invalid_argument(os.str());
     }
-    ++pixelStart_[index(s.x, s.y) + 1];
+    ++pixelStart_[pixelOf(s.x, s.y) + 1];
   }
-  // Counting sort into compressed rows: prefix sums give each pixel's first slot.
+  // Counting sort into compressed rows: prefix sums give each pixel's first slot, which serves
+  // as the pixel's cursor while the samples are placed in their order (no copy of the offsets)
+  // and so ends as the next pixel's first slot: shifted back by one afterwards.
   for (std::size_t i = 1; i < pixelStart_.size(); ++i) pixelStart_[i] += pixelStart_[i - 1];
   disparities16_.resize(samples.size());
   pointPixels_.resize(samples.size());
-  std::vector<int> next(pixelStart_.begin(), pixelStart_.end() - 1);
   for (const LidarSample& s : samples) {
-    const std::size_t pixel = index(s.x, s.y);
-    pointPixels_[static_cast<std::size_t>(next[pixel])] = static_cast<int>(pixel);
-    disparities16_[static_cast<std::size_t>(next[pixel]++)] = s.disparity16;
+    const std::size_t pixel = pixelOf(s.x, s.y);
+    const auto slot = static_cast<std::size_t>(pixelStart_[pixel]++);
+    pointPixels_[slot] = static_cast<int>(pixel);
+    disparities16_[slot] = s.disparity16;
   }
+  for (std::size_t i = pixelStart_.size() - 1; i > 0; --i) pixelStart_[i] = pixelStart_[i - 1];
+  pixelStart_[0] = 0;
+  width_ = width;
+  height_ = height;
 }
 
 LidarPoints LidarPoints::fromDisparityImage(ImageView<const std::int16_t> sparse) {

@@ -11,6 +11,7 @@
 #include "cloud_conversion.hpp"
 #include "cloud_file.hpp"
 #include "cloud_read_error.hpp"
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "lidar_sgm/io/file_access.hpp"
 #include "lidar_sgm/io/kitti_bin.hpp"
 #include "pcd_reader.hpp"
@@ -61,7 +62,19 @@ void requireBufferBytes(const void* data, std::size_t size, const std::string& s
 }  // namespace
 
 pcl::PointCloud<pcl::PointXYZI> readKittiBin(const std::string& path, std::uint64_t maxPoints) {
-  return detail::toXyzi(readKittiScan(path, maxPoints));
+  // Straight into the cloud, a block at a time: no copy of the file or of the points.
+  pcl::PointCloud<pcl::PointXYZI> cloud;
+  readKittiScanBlocks(
+      path, maxPoints, [&cloud](std::size_t total) { reserveOnHugePages(cloud.points, total); },
+      [&cloud](const KittiPoint* block, std::size_t count) {
+        for (std::size_t i = 0; i < count; ++i) {
+          cloud.points.emplace_back(block[i].x, block[i].y, block[i].z, block[i].intensity);
+        }
+      });
+  cloud.width = static_cast<std::uint32_t>(cloud.size());
+  cloud.height = 1;
+  detail::setDenseness(cloud);
+  return cloud;
 }
 
 pcl::PointCloud<pcl::PointXYZI> readKittiBinFromBuffer(const void* data, std::size_t size,

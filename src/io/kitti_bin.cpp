@@ -1,6 +1,8 @@
 #include "lidar_sgm/io/kitti_bin.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <fstream>
 
 #include "cloud_file.hpp"
 #include "cloud_read_error.hpp"
@@ -34,32 +36,66 @@ void checkKittiBinSize(const std::string& source, std::uint64_t size, std::uint6
   }
 }
 
-/// The one KITTI .bin decoder, for files and buffers.
+/// The one KITTI .bin record decoder, for files and buffers: `count` records at `bytes`.
+void decodeKittiRecords(const unsigned char* bytes, std::size_t count, KittiPoint* out) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const unsigned char* record = bytes + i * kKittiPointBytes;
+    KittiPoint& p = out[i];
+    p.x = littleEndianFloat(record);
+    p.y = littleEndianFloat(record + 4);
+    p.z = littleEndianFloat(record + 8);
+    p.intensity = littleEndianFloat(record + 12);
+  }
+}
+
 std::vector<KittiPoint> decodeKittiBin(const std::string& source, const unsigned char* bytes, std::uint64_t size,
                                        std::uint64_t maxPoints) {
   checkKittiBinSize(source, size, maxPoints);
   std::vector<KittiPoint> points;
   reserveOnHugePages(points, static_cast<std::size_t>(size / kKittiPointBytes));
   points.resize(static_cast<std::size_t>(size / kKittiPointBytes));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const unsigned char* record = bytes + i * kKittiPointBytes;
-    KittiPoint& p = points[i];
-    p.x = littleEndianFloat(record);
-    p.y = littleEndianFloat(record + 4);
-    p.z = littleEndianFloat(record + 8);
-    p.intensity = littleEndianFloat(record + 12);
-  }
+  decodeKittiRecords(bytes, points.size(), points.data());
   return points;
 }
 
 }  // namespace
 
-std::vector<KittiPoint> readKittiScan(const std::string& path, std::uint64_t maxPoints) {
+std::size_t readKittiScanBlocks(const std::string& path, std::uint64_t maxPoints,
+                                const std::function<void(std::size_t points)>& begin,
+                                const std::function<void(const KittiPoint* points, std::size_t count)>& block) {
   detail::requireReadableCloudFile(path);
   const std::uint64_t size = detail::cloudFileSize(path);
   checkKittiBinSize(path, size, maxPoints);  // before reading: a huge file is not loaded to be refused
-  const std::vector<unsigned char> bytes = detail::readCloudFileBytes(path, size);
-  return decodeKittiBin(path, bytes.data(), size, maxPoints);
+  const auto total = static_cast<std::size_t>(size / kKittiPointBytes);
+  begin(total);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) detail::failCloudRead(path, "cannot open the file");
+  // A block of records at a time: the file is never held whole beside the points it becomes.
+  constexpr std::size_t kBlockPoints = 4096;
+  std::vector<unsigned char> bytes(kBlockPoints * kKittiPointBytes);
+  std::vector<KittiPoint> points(kBlockPoints);
+  std::uint64_t done = 0;
+  while (done < size) {
+    const auto want = static_cast<std::streamsize>(std::min<std::uint64_t>(bytes.size(), size - done));
+    in.read(reinterpret_cast<char*>(bytes.data()), want);
+    if (in.gcount() != want) {
+      detail::failCloudRead(path, "read error after " + std::to_string(done + static_cast<std::uint64_t>(in.gcount())) +
+                                      " of " + std::to_string(size) + " bytes");
+    }
+    const auto count = static_cast<std::size_t>(want) / kKittiPointBytes;
+    decodeKittiRecords(bytes.data(), count, points.data());
+    block(points.data(), count);
+    done += static_cast<std::uint64_t>(want);
+  }
+  return total;
+}
+
+std::vector<KittiPoint> readKittiScan(const std::string& path, std::uint64_t maxPoints) {
+  std::vector<KittiPoint> points;
+  readKittiScanBlocks(
+      path, maxPoints, [&points](std::size_t total) { reserveOnHugePages(points, total); },
+      [&points](const KittiPoint* block, std::size_t count) { points.insert(points.end(), block, block + count); });
+  return points;
 }
 
 std::vector<KittiPoint> readKittiScanFromBuffer(const void* data, std::size_t size, const std::string& source) {

@@ -200,7 +200,6 @@ void Densifier::match(const LidarPoints* lidar) {
   // The points the camera sees a nearer surface in front of (hidden_lidar.hpp), then those the
   // pair contradicts (lidar_consistency.hpp), are left out of the matching; the projected scan
   // keeps them.
-  LidarPoints kept;
   std::size_t hidden = 0;
   std::size_t inconsistent = 0;
   timings_.witness = 0.0;
@@ -214,8 +213,8 @@ void Densifier::match(const LidarPoints* lidar) {
     }
     if (config_.lidarConsistency.enabled) inconsistent = dropInconsistentLidar(left, right, samples, config_.lidarConsistency);
     if (hidden + inconsistent > 0) {
-      kept = LidarPoints(lidar->width(), lidar->height(), samples);
-      lidar = &kept;
+      keptLidar_.assign(lidar->width(), lidar->height(), samples);
+      lidar = &keptLidar_;
     }
   }
   matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
@@ -323,8 +322,8 @@ const geometry::DenseCloud& Densifier::run(const std::vector<Eigen::Vector3f>& p
                                 "): check the calibration");
   }
   prepareMatcher(projected_.samples);
-  const LidarPoints lidar = projected_.lidarPoints();
-  match(&lidar);
+  lidar_.assign(projected_.width, projected_.height, projected_.samples);
+  match(&lidar_);
   reprojectResult();
   return cloud_;
 }

@@ -416,6 +416,26 @@ TEST(LidarPoints, PointPixelsNameEachPointsPixelInTheCompressedOrder) {
   }
 }
 
+// A pipeline rebuilds its points every frame: assign() gives what construction gives and keeps
+// the pixel offsets' memory; a refused sample list leaves the object empty, not half-built.
+TEST(LidarPoints, AssignReusesItsBuffersAndEqualsConstruction) {
+  LidarPoints points(3, 2, {{1, 0, 16}, {2, 1, 32}});
+  const int* offsets = points.pixelStarts().data();
+  const std::vector<LidarSample> next = {{0, 1, 20}, {1, 0, 48}, {0, 1, 24}};
+  points.assign(3, 2, next);
+  const LidarPoints built(3, 2, next);
+  EXPECT_EQ(points.pixelStarts().data(), offsets);
+  EXPECT_EQ(std::vector<int>(points.pixelStarts().begin(), points.pixelStarts().end()),
+            std::vector<int>(built.pixelStarts().begin(), built.pixelStarts().end()));
+  EXPECT_EQ(points.disparities16(), (std::vector<int>{48, 20, 24}));
+  EXPECT_EQ(points.pointPixels(), built.pointPixels());
+  EXPECT_EQ(std::vector<int>(points.begin(0, 1), points.end(0, 1)), (std::vector<int>{20, 24}));
+  EXPECT_EQ(points.count(2, 1), 0);
+  EXPECT_THROW(points.assign(3, 2, {{0, 0, 16}, {5, 0, 16}}), std::invalid_argument);
+  EXPECT_TRUE(points.empty());
+  EXPECT_EQ(points.width(), 0);
+}
+
 TEST(LidarPoints, EmptySampleList) {
   const LidarPoints points(4, 3, {});
   EXPECT_TRUE(points.empty());

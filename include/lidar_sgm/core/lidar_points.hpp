@@ -28,6 +28,10 @@ class LidarPoints {
   /// non-positive disparity (a point at or behind the camera).
   LidarPoints(int width, int height, const std::vector<LidarSample>& samples);
 
+  /// The same in place, reusing this object's buffers (a pipeline that builds the points every
+  /// frame allocates and clears no new pages). On a throw the object is left empty.
+  void assign(int width, int height, const std::vector<LidarSample>& samples);
+
   /// Every valid pixel (!= kInvalidDisparity, > 0) of a sparse x16 disparity image is one point.
   static LidarPoints fromDisparityImage(ImageView<const std::int16_t> sparse);
 

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,14 @@ struct KittiPoint {
 /// part), or when it holds more than `maxPoints` points (checked from its size, before reading).
 /// An empty file gives no points.
 std::vector<KittiPoint> readKittiScan(const std::string& path, std::uint64_t maxPoints = kMaxCloudPoints);
+
+/// The same checks and points as readKittiScan, handed over a block of records at a time so the
+/// caller fills its own container (a pcl::PointCloud, say) without the whole file in memory
+/// beside it: `begin(points)` once with the file's point count before any block, then
+/// `block(points, count)` in file order. Returns the point count.
+std::size_t readKittiScanBlocks(const std::string& path, std::uint64_t maxPoints,
+                                const std::function<void(std::size_t points)>& begin,
+                                const std::function<void(const KittiPoint* points, std::size_t count)>& block);
 
 /// The same from the file's bytes already in memory (`size` bytes at `data`, at most
 /// kMaxCloudPoints points); `source` names them in messages.

@@ -234,6 +234,8 @@ class Densifier {
   Image<std::uint16_t> witnessLeft16_, witnessRight16_;
   Image<std::int16_t> witnessHalfDisparity_;
   std::vector<LidarSample> keptSamples_;  ///< the points left in the matching, buffer reused per frame
+  LidarPoints lidar_;                     ///< the frame's projected points (run), buffers reused per frame
+  LidarPoints keptLidar_;                 ///< ... those left in the matching, when some were dropped
   LidarAnchorBuffers anchorBuffers_;     ///< lidar_anchor.hpp's sums, reused per frame
   Image<std::int16_t> disparity_;
   Image<float> depth_;

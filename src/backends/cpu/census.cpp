@@ -60,7 +60,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 using D32 = hn::CappedTag<std::int32_t, 8>;
 
 template <typename Pixel>
-void CensusRowImpl(ImageView<const Pixel> image, CensusType type, int y, std::uint64_t* out) {
+void CensusRowImpl(ImageView<const Pixel> image, CensusType type, int y, int x0, int x1, std::uint64_t* out) {
   const D32 d32;
   const hn::Rebind<Pixel, D32> dp;
   const int N = static_cast<int>(hn::Lanes(d32));
@@ -72,10 +72,10 @@ void CensusRowImpl(ImageView<const Pixel> image, CensusType type, int y, std::ui
   const auto load = [&](int dy, int x) { return hn::PromoteTo(d32, hn::LoadU(dp, rows[dy + kHalfHeight] + x)); };
   HWY_ALIGN std::int32_t high[8];
   HWY_ALIGN std::int32_t low[8];
-  int x = 0;
-  for (; x < std::min(kHalfWidth, width); ++x) out[x] = censusPixel(rows, width, x, type);
+  int x = x0;
+  for (; x < std::min(kHalfWidth, x1); ++x) out[x] = censusPixel(rows, width, x, type);
   // Whole vectors wherever the window stays inside the row.
-  for (; x + N + kHalfWidth <= width; x += N) {
+  for (; x + N + kHalfWidth <= width && x + N <= x1; x += N) {
     if (type == CensusType::Census9x7) {
       const auto centre = load(0, x);
       auto hi = hn::Zero(d32);
@@ -112,14 +112,16 @@ void CensusRowImpl(ImageView<const Pixel> image, CensusType type, int y, std::ui
       for (int i = 0; i < N; ++i) out[x + i] = static_cast<std::uint32_t>(low[i]);
     }
   }
-  for (; x < width; ++x) out[x] = censusPixel(rows, width, x, type);
+  for (; x < x1; ++x) out[x] = censusPixel(rows, width, x, type);
 }
 
-void CensusRow8Impl(ImageView<const std::uint8_t> image, CensusType type, int y, std::uint64_t* out) {
-  CensusRowImpl(image, type, y, out);
+void CensusRow8Impl(ImageView<const std::uint8_t> image, CensusType type, int y, int x0, int x1,
+                    std::uint64_t* out) {
+  CensusRowImpl(image, type, y, x0, x1, out);
 }
-void CensusRow16Impl(ImageView<const std::uint16_t> image, CensusType type, int y, std::uint64_t* out) {
-  CensusRowImpl(image, type, y, out);
+void CensusRow16Impl(ImageView<const std::uint16_t> image, CensusType type, int y, int x0, int x1,
+                     std::uint64_t* out) {
+  CensusRowImpl(image, type, y, x0, x1, out);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -135,10 +137,18 @@ HWY_EXPORT(CensusRow8Impl);
 HWY_EXPORT(CensusRow16Impl);
 
 void censusTransformRow(ImageView<const std::uint8_t> image, CensusType type, int y, std::uint64_t* out) {
-  HWY_DYNAMIC_DISPATCH(CensusRow8Impl)(image, type, y, out);
+  HWY_DYNAMIC_DISPATCH(CensusRow8Impl)(image, type, y, 0, image.width, out);
 }
 void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, int y, std::uint64_t* out) {
-  HWY_DYNAMIC_DISPATCH(CensusRow16Impl)(image, type, y, out);
+  HWY_DYNAMIC_DISPATCH(CensusRow16Impl)(image, type, y, 0, image.width, out);
+}
+void censusTransformRow(ImageView<const std::uint8_t> image, CensusType type, int y, int x0, int x1,
+                        std::uint64_t* out) {
+  HWY_DYNAMIC_DISPATCH(CensusRow8Impl)(image, type, y, x0, x1, out);
+}
+void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, int y, int x0, int x1,
+                        std::uint64_t* out) {
+  HWY_DYNAMIC_DISPATCH(CensusRow16Impl)(image, type, y, x0, x1, out);
 }
 
 void censusTransform(ImageView<const std::uint8_t> image, CensusType type, ImageView<std::uint64_t> census,

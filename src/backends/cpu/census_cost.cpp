@@ -179,6 +179,14 @@ void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* pl
   }
 }
 
+void censusPlanes(const std::uint64_t* row, int width, int pad, int xr0, int xr1, std::uint8_t* planes,
+                  std::size_t planeStride) {
+  for (int k = 0; k < 8; ++k) {
+    std::uint8_t* plane = planes + static_cast<std::size_t>(k) * planeStride;
+    for (int xr = xr0; xr < xr1; ++xr) plane[pad + width - 1 - xr] = static_cast<std::uint8_t>(row[xr] >> (8 * k));
+  }
+}
+
 void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
                    CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
                    std::uint8_t* cost, RowWindows windows) {

@@ -33,11 +33,21 @@ struct RowWindows {
 // census.cpp: one row of the census transform (cpu_ref's bit order, border pixels repeated).
 void censusTransformRow(ImageView<const std::uint8_t> image, CensusType type, int y, std::uint64_t* out);
 void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, int y, std::uint64_t* out);
+// ... of columns x0 .. x1-1 only, into out[x] (the same bits as the whole row's).
+void censusTransformRow(ImageView<const std::uint8_t> image, CensusType type, int y, int x0, int x1,
+                        std::uint64_t* out);
+void censusTransformRow(ImageView<const std::uint16_t> image, CensusType type, int y, int x0, int x1,
+                        std::uint64_t* out);
 
 // census_cost.cpp: the right census row as 8 byte planes (plane k holds byte k), columns in
 // reverse order from index `pad`, zero-padded by `pad` on both sides (planeStride = width + 2 pad).
 int censusPlanePad(int minDisparity, int numDisparities);
 void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride);
+// ... of columns xr0 .. xr1-1 only, pads untouched: enough for C_S of pixels x0 .. x1-1 with
+// xr0 = max(0, x0 - minDisparity - D + 1), xr1 = min(width, x1 - minDisparity) (row_costs.cpp), since
+// the cost kernels replace every lane whose right pixel lies outside the image (censusCostRow).
+void censusPlanes(const std::uint64_t* row, int width, int pad, int xr0, int xr1, std::uint8_t* planes,
+                  std::size_t planeStride);
 // C_S for pixels x0 .. x1-1 of one row into cost[(x - x0) * D + d]; with `windows` only the d of
 // each pixel's window (the other entries are left as they were).
 void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,

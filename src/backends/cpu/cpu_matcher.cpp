@@ -64,29 +64,22 @@ void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std
   runStages(f, disparity);
 }
 
-// The census images, and the right one as byte planes (census_cost.cpp) for the cost rows.
+// The third camera's census image, and the layout of the right census planes. The pair's census
+// is computed row by row where the costs need it (row_costs.cpp): the frame holds no census
+// image of the pair (2 x 3.7 MB at KITTI size, and the planes 4.6 MB).
 void CpuMatcher::censusImages(Frame& f, const FrameInputs& in) {
   const FramePlan& plan = f.plan;
-  const auto census = [&](const GrayImageView& image, Image<std::uint64_t>& out) {
-    out.resize(image.width(), image.height());
-    if (!image.gray8.empty()) {
-      censusTransform(image.gray8, plan.params.censusType, out.view(), f.threads);
+  if (plan.upCamera()) {
+    upCensus_.resize(in.up.width(), in.up.height());
+    if (!in.up.gray8.empty()) {
+      censusTransform(in.up.gray8, plan.params.censusType, upCensus_.view(), f.threads);
     } else {
-      censusTransform(image.gray16, plan.params.censusType, out.view(), f.threads);
+      censusTransform(in.up.gray16, plan.params.censusType, upCensus_.view(), f.threads);
     }
-  };
-  census(in.left, leftCensus_);
-  census(in.right, rightCensus_);
-  if (plan.upCamera()) census(in.up, upCensus_);
+  }
+  f.right = in.right;
   f.planePad = censusPlanePad(plan.minDisparity, plan.D);
   f.planeStride = static_cast<std::size_t>(plan.width) + 2 * static_cast<std::size_t>(f.planePad);
-  resizeKeep(rightPlanes_, f.planeStride * 8 * plan.height);
-  parallelRanges(plan.height, f.threads, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      censusPlanes(rightCensus_.view().row(y), plan.width, f.planePad,
-                   rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride, f.planeStride);
-    }
-  });
 }
 
 // What the cost rows need of the LiDAR besides its points: the cost table, the pixels a point
@@ -190,6 +183,11 @@ void CpuMatcher::prepareWorkers(const Frame& f, bool newLayout) {
     resizeKeep(w.lidar, partMax);
     if (plan.upCamera()) resizeKeep(w.vertical, partMax);
     resizeKeep(w.total, static_cast<std::size_t>(plan.D));
+    if (plan.useCameras()) {
+      resizeKeep(w.leftCensus, static_cast<std::size_t>(W));
+      resizeKeep(w.rightCensus, static_cast<std::size_t>(W));
+      resizeKeep(w.rightPlanes, 8 * f.planeStride);
+    }
     if (plan.lrCheck || plan.confidenceLr) {
       resizeKeep(w.rightScratch, rightIndexScratchSize(W, plan.D, plan.minDisparity));
     }

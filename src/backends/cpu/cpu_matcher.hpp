@@ -1,9 +1,9 @@
 #pragma once
 // The fast CPU backend's matcher: the stages of cpu_ref, streamed in two sweeps over the image.
 //
-//   census      rows in parallel, into census images (the right one also as byte planes).
 //   sweep up    bottom to top, columns split among the threads (no synchronisation with 4
-//               paths): the cost C(p, .) of each pixel - census cost, LiDAR cost from the points
+//               paths): the cost C(p, .) of each pixel - the pair's census of the row (each
+//               thread the columns it needs: no census image is kept), census cost, LiDAR cost from the points
 //               around p, fusion, all on the fly - is stored (8 bits, the only full volume),
 //               and the upward paths (1 of 4, 3 of 8) recurse in row buffers; their state is
 //               kept only at the first row of every chunk of kChunkRows rows (a checkpoint).
@@ -55,6 +55,7 @@ class CpuMatcher final : public MatcherBackend {
     const FramePlan& plan;
     FrameResults& out;
     GrayImageView left;  // empty in LiDAR-only mode (the confidence reads no image there)
+    GrayImageView right;  // the cost rows' right image (empty in LiDAR-only mode)
     const LidarPoints* lidar = nullptr;
     /// The gated search's windows (Parameters::gatedSearch); null: every pixel the whole range.
     const SearchWindows* windows = nullptr;
@@ -71,6 +72,9 @@ class CpuMatcher final : public MatcherBackend {
     std::vector<std::uint8_t> lidar;     // C_L (fused mode)
     std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
     std::vector<std::uint16_t> total;      // S of one pixel (the selection needs no more)
+    std::vector<std::uint64_t> leftCensus;   // the left census of the row being costed
+    std::vector<std::uint64_t> rightCensus;  // ... the right one
+    std::vector<std::uint8_t> rightPlanes;   // ... as reversed byte planes (census_cost.cpp)
     std::vector<std::uint8_t> rightward;  // L of the left-to-right path along one row (slots, bytes)
     std::vector<std::uint8_t> leftward;   // ... and of the right-to-left path
     std::vector<std::uint16_t> rightScratch;  // the right view's winners of a row
@@ -122,6 +126,9 @@ class CpuMatcher final : public MatcherBackend {
   static T* as(Bytes& bytes, std::size_t elementOffset = 0) {
     return reinterpret_cast<T*>(bytes.data()) + elementOffset;
   }
+  /// The pair's census of row y that pixels x0 .. x1-1 need, in the worker's row buffers
+  /// (row_costs.cpp): the left census, the right one as planes.
+  static void censusRows(const Frame& frame, int y, int x0, int x1, Worker& worker);
   /// C of pixels x0 .. x1-1 of row y (costs.cpp).
   void costRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* cost, Worker& worker);
   void lidarCostRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* lidar);
@@ -136,17 +143,14 @@ class CpuMatcher final : public MatcherBackend {
   void confidenceStage(const Frame& frame, ImageView<const std::int16_t> disparity);
 
   // Buffers kept between frames (resized only when the frame size changes).
-  Image<std::uint64_t> leftCensus_;
-  Image<std::uint64_t> rightCensus_;
   Image<std::uint64_t> upCensus_;
-  HugePageVector<std::uint8_t> rightPlanes_;  // the right census as reversed byte planes, per row
   HugeBuffer<std::uint8_t> cost_;        // C of every pixel, from the sweep up to the sweep down
   // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
   // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
   HugePageVector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
   std::size_t pathLayout_ = 0;
   std::vector<std::uint16_t> pathMins_;
-  static constexpr int kChunkRows = 4;
+  static constexpr int kChunkRows = 8;
   HugePageVector<std::uint8_t> chunkPaths_;    // sweep down: a chunk's path rows (slots), two parities
   std::vector<std::uint16_t> chunkMins_;    // ... and their minima
   HugePageVector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row

@@ -1,6 +1,10 @@
 // The matching cost C of a row's pixels, computed on the fly in the sweep up: C_L from the points
 // around each pixel, C_S (or Triple-SGM's C_S3) from the census images, fused by Eq. 5 while the
-// pixel's costs are still in the L1 cache. No cost volume but C itself is ever stored.
+// pixel's costs are still in the L1 cache. No cost volume but C itself is ever stored, and no
+// census image of the pair: each thread computes the census of its part of the row where it needs
+// it (the left pixels it costs, the right pixels they can match, and those as planes): ~13 MB
+// less memory a KITTI frame.
+#include <algorithm>
 #include <cstring>
 
 #include "backends/cpu/cpu_kernels.hpp"
@@ -8,6 +12,22 @@
 
 namespace lidar_sgm {
 namespace cpu {
+
+void CpuMatcher::censusRows(const Frame& f, int y, int x0, int x1, Worker& w) {
+  const CensusType type = f.plan.params.censusType;
+  const int W = f.plan.width;
+  // The right pixels that pixels x0 .. x1-1 can match (census_cost.cpp ignores all others).
+  const int xr0 = std::clamp(x0 - f.plan.minDisparity - f.plan.D + 1, 0, W);
+  const int xr1 = std::clamp(x1 - f.plan.minDisparity, xr0, W);
+  if (!f.left.gray8.empty()) {
+    censusTransformRow(f.left.gray8, type, y, x0, x1, w.leftCensus.data());
+    censusTransformRow(f.right.gray8, type, y, xr0, xr1, w.rightCensus.data());
+  } else {
+    censusTransformRow(f.left.gray16, type, y, x0, x1, w.leftCensus.data());
+    censusTransformRow(f.right.gray16, type, y, xr0, xr1, w.rightCensus.data());
+  }
+  censusPlanes(w.rightCensus.data(), W, f.planePad, xr0, xr1, w.rightPlanes.data(), f.planeStride);
+}
 
 void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* cost, Worker& w) {
   const FramePlan& plan = f.plan;
@@ -23,8 +43,9 @@ void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* 
     tripleCostRange(f, y, x0, x1, lidar, cost, w, lap);
     return;
   }
-  const std::uint64_t* leftRow = leftCensus_.view().row(y);
-  const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
+  censusRows(f, y, x0, x1, w);
+  const std::uint64_t* leftRow = w.leftCensus.data();
+  const std::uint8_t* planes = w.rightPlanes.data();
   if (plan.mode == MatchMode::Fused) {
     const std::uint16_t* weights = plan.adaptiveAlpha ? lidarWeights_.view().row(y) : nullptr;
     // With the gated search, only the windows' costs: nothing reads the others.
@@ -63,8 +84,9 @@ void CpuMatcher::tripleCostRange(const Frame& f, int y, int x0, int x1, const st
   const Parameters& p = plan.params;
   const std::size_t D = static_cast<std::size_t>(plan.D);
   const std::size_t n = static_cast<std::size_t>(x1 - x0) * D;
-  const std::uint64_t* leftRow = leftCensus_.view().row(y);
-  const std::uint8_t* planes = rightPlanes_.data() + static_cast<std::size_t>(y) * 8 * f.planeStride;
+  censusRows(f, y, x0, x1, w);
+  const std::uint64_t* leftRow = w.leftCensus.data();
+  const std::uint8_t* planes = w.rightPlanes.data();
   std::uint8_t* camera = plan.mode == MatchMode::Fused ? w.stereo.data() : cost;
   censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1, plan.minDisparity,
                 plan.D, camera);
