@@ -170,21 +170,21 @@ int censusPlanePad(int minDisparity, int numDisparities) {
   return std::abs(minDisparity) + numDisparities + 64;
 }
 
-void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride) {
-  for (int k = 0; k < 8; ++k) {
-    std::uint8_t* plane = planes + static_cast<std::size_t>(k) * planeStride;
-    std::memset(plane, 0, static_cast<std::size_t>(pad));
-    std::memset(plane + pad + width, 0, planeStride - pad - static_cast<std::size_t>(width));
-    for (int xr = 0; xr < width; ++xr) plane[pad + width - 1 - xr] = static_cast<std::uint8_t>(row[xr] >> (8 * k));
-  }
-}
-
 void censusPlanes(const std::uint64_t* row, int width, int pad, int xr0, int xr1, std::uint8_t* planes,
                   std::size_t planeStride) {
   for (int k = 0; k < 8; ++k) {
     std::uint8_t* plane = planes + static_cast<std::size_t>(k) * planeStride;
     for (int xr = xr0; xr < xr1; ++xr) plane[pad + width - 1 - xr] = static_cast<std::uint8_t>(row[xr] >> (8 * k));
   }
+}
+
+void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride) {
+  for (int k = 0; k < 8; ++k) {
+    std::uint8_t* plane = planes + static_cast<std::size_t>(k) * planeStride;
+    std::memset(plane, 0, static_cast<std::size_t>(pad));
+    std::memset(plane + pad + width, 0, planeStride - pad - static_cast<std::size_t>(width));
+  }
+  censusPlanes(row, width, pad, 0, width, planes, planeStride);
 }
 
 void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
