@@ -44,10 +44,12 @@ struct WholeFrameMeasurement {
   double confidenceMs = 0; ///< StageTimings::confidence: the core's part of the confidence
   PairedTiming paired;     ///< Densifier::run against cv::StereoSGBM::compute, frame by frame
   std::size_t cloudPoints = 0;
+  double densifierPeakRssMiB = 0;  ///< the process's peak RSS after three Densifier frames, before any OpenCV run
   int disparities = 0;     ///< the search range used (from the LiDAR by default), in the matched image
   MatchMode mode = MatchMode::Fused;
 };
 
+/// Three Densifier frames alone (densifierPeakRssMiB), then
 /// `runs` pairs after `warmups`: one Densifier frame (defaults, fused, `backend`, `scale`, and
 /// `matcher`'s threads and gated search), then one cv::StereoSGBM::compute with `sgbm` on `sgbmPair`
 /// (the pair at the scale matched) with as many threads. Throws std::logic_error if a frame is not fused.

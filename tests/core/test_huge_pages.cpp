@@ -62,6 +62,22 @@ TEST(HugePages, LargeBlocksAreAlignedAndAdvisedSmallOnesAreNot) {
   EXPECT_FALSE(advised(beside.data())) << vmFlagsAt(beside.data());
 }
 
+TEST(HugePages, ALastPageLessThanHalfUsedKeepsSmallPages) {
+  // Two whole pages and a quarter: the quarter would leave 1.5 MiB of a huge page unused.
+  HugePageVector<std::uint8_t> quarter(2 * kHugePageSize + kHugePageSize / 4, 1);
+  // Two whole pages and three quarters: the last page is mostly data, so huge too.
+  HugePageVector<std::uint8_t> threeQuarters(2 * kHugePageSize + 3 * kHugePageSize / 4, 2);
+  ASSERT_TRUE(alignedToHugePage(quarter.data()));
+  ASSERT_TRUE(alignedToHugePage(threeQuarters.data()));
+  EXPECT_EQ(quarter.back(), 1);
+  EXPECT_EQ(threeQuarters.back(), 2);
+  if (!kernelAdvisesHugePages()) GTEST_SKIP() << "this kernel offers no transparent huge pages";
+  if (!LIDAR_SGM_HUGE_PAGES_MAPPED) GTEST_SKIP() << "the sanitizer's allocator holds the blocks";
+  EXPECT_TRUE(advised(quarter.data() + kHugePageSize)) << vmFlagsAt(quarter.data() + kHugePageSize);
+  EXPECT_FALSE(advised(quarter.data() + 2 * kHugePageSize)) << vmFlagsAt(quarter.data() + 2 * kHugePageSize);
+  EXPECT_TRUE(advised(threeQuarters.data() + 2 * kHugePageSize)) << vmFlagsAt(threeQuarters.data() + 2 * kHugePageSize);
+}
+
 TEST(HugePages, VectorsGrowCopyAndCompareLikeAnyVector) {
   HugePageVector<int> v;
   for (int i = 0; i < 600000; ++i) v.push_back(i);  // crosses the threshold while growing

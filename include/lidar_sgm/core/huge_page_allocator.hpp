@@ -50,7 +50,8 @@ inline std::size_t hugePageBytes(std::size_t bytes) {
   return rounded;
 }
 
-/// hugePageBytes(bytes) of zeroed memory, 2 MiB aligned and advised as huge pages, mapped for this
+/// hugePageBytes(bytes) of zeroed memory, 2 MiB aligned and advised as huge pages (the last, partial
+/// page only when at least half of it is data, as kHugePageThreshold asks of a block), mapped for this
 /// block alone: the advice leaves with the block (inside malloc's heap it would outlive the block
 /// and put later small blocks on huge pages too). Release it with freeHugePages. Throws
 /// std::bad_alloc.
@@ -66,7 +67,11 @@ inline void* allocateHugePages(std::size_t bytes) {
   if (aligned > begin) munmap(raw, aligned - begin);
   const std::uintptr_t end = begin + span;
   if (end > aligned + rounded) munmap(reinterpret_cast<void*>(aligned + rounded), end - (aligned + rounded));
-  madvise(reinterpret_cast<void*>(aligned), rounded, MADV_HUGEPAGE);  // a hint: without THP, small pages
+  // A hint (without THP, small pages). The last, partial page is advised too only when at least
+  // half of it is data: otherwise a huge page there would map more unused memory than data.
+  const std::size_t whole = bytes / kHugePageSize * kHugePageSize;
+  const std::size_t advised = 2 * (bytes - whole) >= kHugePageSize ? rounded : whole;
+  if (advised > 0) madvise(reinterpret_cast<void*>(aligned), advised, MADV_HUGEPAGE);
   return reinterpret_cast<void*>(aligned);
 #else
   void* memory = std::aligned_alloc(kHugePageSize, rounded);
