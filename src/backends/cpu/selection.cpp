@@ -81,11 +81,20 @@ void SelectRowImpl(const std::uint16_t* total, int x0, int x1, int D, int minDis
 // the L1 cache for the winner search), its minimum on the fly, then the selection and `extras`.
 // With windows (first != nullptr) all of it runs on the pixel's window: S from its first entry,
 // the winner's index and the bids shifted back to the whole range (gated_stages.hpp).
-template <typename T>
-void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8, const std::uint16_t* stored16,
+// kCount > 0: the number of paths, known when compiled (the path pointers then stay in registers
+// and the sum over them is unrolled: the default 8 paths and 4 paths); 0: `count`, at run time.
+template <int kCount, typename T>
+void SumSelectRowT(const T* const* pathList, int count, const std::uint8_t* stored8, const std::uint16_t* stored16,
                    int x0, int x1, int D, int minDisparity, int uniquenessRatio, bool subpixel, std::uint16_t* total,
                    std::int16_t* disparity16, std::int16_t* bestIndex, const WinnerExtras* extras,
                    const std::int16_t* first, const std::int16_t* windowCount) {
+  constexpr int kLocal = kCount > 0 ? kCount : 1;
+  const T* local[kLocal];
+  if constexpr (kCount > 0) {
+    for (int k = 0; k < kCount; ++k) local[k] = pathList[k];
+  }
+  const T* const* paths = kCount > 0 ? local : pathList;
+  const int pathCount = kCount > 0 ? kCount : count;
   const D16 d16;
   const int N = static_cast<int>(hn::Lanes(d16));
   const int slot = pathSlot(D);
@@ -98,15 +107,15 @@ void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8
   for (int x = x0; x < x1; ++x) {
     const int f = first == nullptr ? 0 : first[x];
     const int n = first == nullptr ? D : windowCount[x];
-    const std::size_t local = static_cast<std::size_t>(x - x0) * D + f;
+    const std::size_t atPixel = static_cast<std::size_t>(x - x0) * D + f;
     const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1 + f;
-    std::uint16_t* S = pixelTotal ? total : total + local;
+    std::uint16_t* S = pixelTotal ? total : total + atPixel;
     auto minimum = hn::Set(d16, std::uint16_t{0xFFFF});
     for (int i = 0; i < n; i += N) {
-      auto sum = stored8 != nullptr    ? LoadAsU16(stored8 + local + i)
-                 : stored16 != nullptr ? hn::LoadU(d16, stored16 + local + i)
+      auto sum = stored8 != nullptr    ? LoadAsU16(stored8 + atPixel + i)
+                 : stored16 != nullptr ? hn::LoadU(d16, stored16 + atPixel + i)
                                        : hn::Zero(d16);
-      for (int k = 0; k < count; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
+      for (int k = 0; k < pathCount; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
       hn::StoreU(sum, d16, S + i);
       minimum = hn::Min(minimum, sum);
     }
@@ -128,19 +137,36 @@ void SumSelectRowT(const T* const* paths, int count, const std::uint8_t* stored8
   if (bids) bids->winners(extras->rightIndex);
 }
 
+template <typename T>
+void SumSelectRowCount(const T* const* paths, int count, const std::uint8_t* stored8, const std::uint16_t* stored16,
+                       int x0, int x1, int D, int minDisparity, int uniquenessRatio, bool subpixel,
+                       std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
+                       const WinnerExtras* extras, const std::int16_t* first, const std::int16_t* windowCount) {
+  if (count == 8) {
+    SumSelectRowT<8>(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
+                     disparity16, bestIndex, extras, first, windowCount);
+  } else if (count == 4) {
+    SumSelectRowT<4>(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
+                     disparity16, bestIndex, extras, first, windowCount);
+  } else {
+    SumSelectRowT<0>(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
+                     disparity16, bestIndex, extras, first, windowCount);
+  }
+}
+
 void SumSelectRow8(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
                    const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
                    bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
                    const WinnerExtras* extras, const std::int16_t* first, const std::int16_t* windowCount) {
-  SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                disparity16, bestIndex, extras, first, windowCount);
+  SumSelectRowCount(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
+                    disparity16, bestIndex, extras, first, windowCount);
 }
 void SumSelectRow16(const std::uint16_t* const* paths, int count, const std::uint8_t* stored8,
                     const std::uint16_t* stored16, int x0, int x1, int D, int minDisparity, int uniquenessRatio,
                     bool subpixel, std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
                    const WinnerExtras* extras, const std::int16_t* first, const std::int16_t* windowCount) {
-  SumSelectRowT(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                disparity16, bestIndex, extras, first, windowCount);
+  SumSelectRowCount(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
+                    disparity16, bestIndex, extras, first, windowCount);
 }
 
 }  // namespace HWY_NAMESPACE
