@@ -96,16 +96,17 @@ HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* plan
 }
 
 // The costs of disparity indices [first, first + count) (count a multiple of 16): the whole range,
-// or a gated pixel's window (the entries outside it are never read).
+// or a gated pixel's window (the entries outside it are never read). Whole vectors of the target
+// (64 disparities a step with AVX-512, 32 with AVX2), then 16 at a time for the rest.
 template <int kBytes, Fusion kFusion>
 HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int first,
                           int count, int dBegin, int dEnd, const std::uint8_t* lidar, int alphaWeight256,
                           std::uint8_t* out) {
-  const hn::CappedTag<std::uint8_t, 32> d32;
+  const hn::CappedTag<std::uint8_t, 64> dWide;
   const hn::CappedTag<std::uint8_t, 16> d16;
-  const int N = static_cast<int>(hn::Lanes(d32));
+  const int N = static_cast<int>(hn::Lanes(dWide));
   const int whole = count / N * N;
-  HammingPixel<kBytes, kFusion>(d32, left, planes, planeStride, first, whole, dBegin, dEnd, lidar, alphaWeight256,
+  HammingPixel<kBytes, kFusion>(dWide, left, planes, planeStride, first, whole, dBegin, dEnd, lidar, alphaWeight256,
                                 out);
   if (whole < count) {
     HammingPixel<kBytes, kFusion>(d16, left, planes, planeStride, first + whole, count - whole, dBegin, dEnd, lidar,
