@@ -435,6 +435,8 @@ std::vector<FrameCase> frameCases() {
       {"Stereo16Bit", 131, 61, 16, "stereo", [](Parameters& p) { p.numDisparities = 64; }},
       {"Disparities16", 97, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 16; }},
       {"Disparities256", 331, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 256; }},
+      // 80: whole vectors of the widest target, then a tail of 16 (AVX-512: 64 + 16; AVX2: 2 x 32 + 16).
+      {"Disparities80", 131, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 80; }},
       {"MinDisparityNegative", 131, 61, 8, "stereo",
        [](Parameters& p) { p.numDisparities = 64; p.minDisparity = -7; }},
       {"MinDisparityPositive", 131, 61, 8, "fused", [](Parameters& p) { p.numDisparities = 64; p.minDisparity = 9; }},

@@ -138,7 +138,8 @@ void addPathRow(const std::uint16_t* path, int x0, int x1, int numDisparities, s
 // total[(x - x0) * D + d].
 void selectRow(const std::uint16_t* total, int x0, int x1, int numDisparities, int minDisparity,
                int uniquenessRatio, bool subpixel, std::int16_t* disparity16, std::int16_t* bestIndex);
-// sumPathRows and selectRow in one pass per pixel (total keeps the row's S for the LR check).
+// sumPathRows and selectRow in one pass per pixel (total keeps the row's S for the LR check), over
+// `count` = 4 or 8 path rows (Parameters::paths; std::invalid_argument otherwise).
 /// What sumSelectRow also computes from each pixel's S while it is still in the L1 cache, with
 /// the code of the stand-alone row kernels below (null pointers: not wanted): the right view's
 /// winners (rightDisparityIndexRow; needs the whole row: x0 = 0, x1 = width) and the peak-ratio

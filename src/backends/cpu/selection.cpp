@@ -5,7 +5,10 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
 #include <optional>
 
 #include "backends/cpu/cpu_kernels.hpp"
@@ -81,20 +84,15 @@ void SelectRowImpl(const std::uint16_t* total, int x0, int x1, int D, int minDis
 // the L1 cache for the winner search), its minimum on the fly, then the selection and `extras`.
 // With windows (first != nullptr) all of it runs on the pixel's window: S from its first entry,
 // the winner's index and the bids shifted back to the whole range (gated_stages.hpp).
-// kCount > 0: the number of paths, known when compiled (the path pointers then stay in registers
-// and the sum over them is unrolled: the default 8 paths and 4 paths); 0: `count`, at run time.
+// kCount: the number of paths (4 or 8, Parameters::paths), known when compiled, so that the path
+// pointers stay in registers and the sum over them is unrolled.
 template <int kCount, typename T>
-void SumSelectRowT(const T* const* pathList, int count, const std::uint8_t* stored8, const std::uint16_t* stored16,
+void SumSelectRowT(const T* const* pathList, const std::uint8_t* stored8, const std::uint16_t* stored16,
                    int x0, int x1, int D, int minDisparity, int uniquenessRatio, bool subpixel, std::uint16_t* total,
                    std::int16_t* disparity16, std::int16_t* bestIndex, const WinnerExtras* extras,
                    const std::int16_t* first, const std::int16_t* windowCount) {
-  constexpr int kLocal = kCount > 0 ? kCount : 1;
-  const T* local[kLocal];
-  if constexpr (kCount > 0) {
-    for (int k = 0; k < kCount; ++k) local[k] = pathList[k];
-  }
-  const T* const* paths = kCount > 0 ? local : pathList;
-  const int pathCount = kCount > 0 ? kCount : count;
+  const T* paths[kCount];
+  std::copy(pathList, pathList + kCount, paths);
   const D16 d16;
   const int N = static_cast<int>(hn::Lanes(d16));
   const int slot = pathSlot(D);
@@ -115,7 +113,7 @@ void SumSelectRowT(const T* const* pathList, int count, const std::uint8_t* stor
       auto sum = stored8 != nullptr    ? LoadAsU16(stored8 + atPixel + i)
                  : stored16 != nullptr ? hn::LoadU(d16, stored16 + atPixel + i)
                                        : hn::Zero(d16);
-      for (int k = 0; k < pathCount; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
+      for (int k = 0; k < kCount; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
       hn::StoreU(sum, d16, S + i);
       minimum = hn::Min(minimum, sum);
     }
@@ -142,16 +140,12 @@ void SumSelectRowCount(const T* const* paths, int count, const std::uint8_t* sto
                        int x0, int x1, int D, int minDisparity, int uniquenessRatio, bool subpixel,
                        std::uint16_t* total, std::int16_t* disparity16, std::int16_t* bestIndex,
                        const WinnerExtras* extras, const std::int16_t* first, const std::int16_t* windowCount) {
-  if (count == 8) {
-    SumSelectRowT<8>(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                     disparity16, bestIndex, extras, first, windowCount);
-  } else if (count == 4) {
-    SumSelectRowT<4>(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                     disparity16, bestIndex, extras, first, windowCount);
-  } else {
-    SumSelectRowT<0>(paths, count, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total,
-                     disparity16, bestIndex, extras, first, windowCount);
+  if (count != 4 && count != 8) {
+    throw std::invalid_argument("sumSelectRow: 4 or 8 paths, not " + std::to_string(count));
   }
+  const auto row = count == 8 ? SumSelectRowT<8, T> : SumSelectRowT<4, T>;
+  row(paths, stored8, stored16, x0, x1, D, minDisparity, uniquenessRatio, subpixel, total, disparity16, bestIndex,
+      extras, first, windowCount);
 }
 
 void SumSelectRow8(const std::uint8_t* const* paths, int count, const std::uint8_t* stored8,
