@@ -27,56 +27,82 @@ std::int16_t clamp16(int disparity16) {
 
 }  // namespace
 
-void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
-                        SearchWindows& windows) {
-  const int width = points.width();
-  const int height = points.height();
-  windows.resizeFull(width, height, numDisparities);
-  // The neighbourhood is a box: the extremes over +-1 column first (one pass over the points),
-  // then over +-rows rows of those, instead of (2 rows + 1) * 3 pixels' points per pixel.
-  const std::size_t n = static_cast<std::size_t>(width) * height;
+// The neighbourhood is a box: the extremes over +-1 column first (one pass over the points),
+// then over +-rows rows of those, instead of (2 rows + 1) * 3 pixels' points per pixel.
+void prepareLidarSearchWindows(const LidarPoints& points, int numDisparities, SearchWindows& windows) {
+  // Pass 2 sets every pixel's window: no fill here.
+  windows.resize(points.width(), points.height(), numDisparities);
+  const std::size_t n = static_cast<std::size_t>(points.width()) * points.height();
   SearchWindows::Scratch& scratch = windows.scratch();
-  std::vector<std::int16_t>& lowest16 = scratch.lowest16;
-  std::vector<std::int16_t>& highest16 = scratch.highest16;
-  lowest16.assign(n, kNoLowest);  // no reallocation for a size seen before
-  highest16.assign(n, kNoHighest);
-  for (int y = 0; y < height; ++y) {
+  scratch.lowest16.resize(n);  // no reallocation for a size seen before; pass 1 fills its rows
+  scratch.highest16.resize(n);
+}
+
+void lidarSearchExtremes(const LidarPoints& points, int y0, int y1, SearchWindows& windows) {
+  const int width = points.width();
+  SearchWindows::Scratch& scratch = windows.scratch();
+  for (int y = y0; y < y1; ++y) {
+    std::int16_t* lowest16 = scratch.lowest16.data() + static_cast<std::size_t>(y) * width;
+    std::int16_t* highest16 = scratch.highest16.data() + static_cast<std::size_t>(y) * width;
+    std::fill(lowest16, lowest16 + width, kNoLowest);
+    std::fill(highest16, highest16 + width, kNoHighest);
+    // A row's points are contiguous: the pixels without any are skipped by their offsets alone.
     for (int x = 0; x < width; ++x) {
       for (const int* d = points.begin(x, y); d != points.end(x, y); ++d) {
         const std::int16_t value = clamp16(*d);
         for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
-          const std::size_t i = static_cast<std::size_t>(y) * width + nx;
-          lowest16[i] = std::min(lowest16[i], value);
-          highest16[i] = std::max(highest16[i], value);
+          lowest16[nx] = std::min(lowest16[nx], value);
+          highest16[nx] = std::max(highest16[nx], value);
         }
       }
     }
   }
-  std::vector<std::int16_t>& low16 = scratch.rowLowest16;
-  std::vector<std::int16_t>& high16 = scratch.rowHighest16;
-  low16.resize(static_cast<std::size_t>(width));
-  high16.resize(static_cast<std::size_t>(width));
-  for (int y = 0; y < height; ++y) {
+}
+
+void lidarSearchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
+                           std::int16_t* high16, SearchWindows& windows) {
+  const int width = windows.width();
+  const int height = windows.height();
+  const int numDisparities = windows.numDisparities();
+  const SearchWindows::Scratch& scratch = windows.scratch();
+  for (int y = y0; y < y1; ++y) {
     // The extremes over +-rows rows, a whole row at a time (contiguous: the compiler vectorises it).
-    std::fill(low16.begin(), low16.end(), kNoLowest);
-    std::fill(high16.begin(), high16.end(), kNoHighest);
+    std::fill(low16, low16 + width, kNoLowest);
+    std::fill(high16, high16 + width, kNoHighest);
     for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
-      const std::int16_t* lowRow = lowest16.data() + static_cast<std::size_t>(ny) * width;
-      const std::int16_t* highRow = highest16.data() + static_cast<std::size_t>(ny) * width;
+      const std::int16_t* lowRow = scratch.lowest16.data() + static_cast<std::size_t>(ny) * width;
+      const std::int16_t* highRow = scratch.highest16.data() + static_cast<std::size_t>(ny) * width;
       for (int x = 0; x < width; ++x) {
         low16[x] = std::min(low16[x], lowRow[x]);
         high16[x] = std::max(high16[x], highRow[x]);
       }
     }
     for (int x = 0; x < width; ++x) {
-      if (low16[x] > high16[x]) continue;  // no point: the LiDAR does not constrain this pixel
-      const int first = std::max(0, floorDivide(low16[x], kDisparityScale) - margin - minDisparity);
-      const int last = std::min(numDisparities - 1, ceilDivide(high16[x], kDisparityScale) + margin - minDisparity);
-      if (first > last) continue;  // every point outside the range: nothing to narrow it to
-      const int count = std::min(numDisparities, (last - first + 1 + 15) / 16 * 16);
-      windows.set(x, y, std::min(first, numDisparities - count), count);
+      int first = 0;
+      int count = numDisparities;  // no point: the LiDAR does not constrain this pixel
+      if (low16[x] <= high16[x]) {
+        const int lowest = std::max(0, floorDivide(low16[x], kDisparityScale) - margin - minDisparity);
+        const int last =
+            std::min(numDisparities - 1, ceilDivide(high16[x], kDisparityScale) + margin - minDisparity);
+        if (lowest <= last) {  // else every point lies outside the range: nothing to narrow it to
+          count = std::min(numDisparities, (last - lowest + 1 + 15) / 16 * 16);
+          first = std::min(lowest, numDisparities - count);
+        }
+      }
+      windows.set(x, y, first, count);
     }
   }
+}
+
+void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
+                        SearchWindows& windows) {
+  prepareLidarSearchWindows(points, numDisparities, windows);
+  lidarSearchExtremes(points, 0, points.height(), windows);
+  SearchWindows::Scratch& scratch = windows.scratch();
+  scratch.rowLowest16.resize(static_cast<std::size_t>(points.width()));
+  scratch.rowHighest16.resize(static_cast<std::size_t>(points.width()));
+  lidarSearchWindowRows(minDisparity, rows, margin, 0, points.height(), scratch.rowLowest16.data(),
+                        scratch.rowHighest16.data(), windows);
 }
 
 }  // namespace lidar_sgm

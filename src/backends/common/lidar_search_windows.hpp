@@ -20,4 +20,16 @@ namespace lidar_sgm {
 void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
                         SearchWindows& windows);
 
+/// lidarSearchWindows in its two passes, for a caller that splits the rows among threads:
+/// prepareLidarSearchWindows once, then lidarSearchExtremes on row ranges that cover the frame,
+/// then (after every one of them) lidarSearchWindowRows on row ranges that cover it. Within a
+/// pass the row ranges are independent; the windows are those of lidarSearchWindows bit for bit.
+void prepareLidarSearchWindows(const LidarPoints& points, int numDisparities, SearchWindows& windows);
+/// Pass 1, rows y0 .. y1-1: the extremes of each pixel's points over +-1 column.
+void lidarSearchExtremes(const LidarPoints& points, int y0, int y1, SearchWindows& windows);
+/// Pass 2, rows y0 .. y1-1: the extremes over +-`rows` rows and the windows; `low16` and
+/// `high16` are width int16 of the caller's scratch.
+void lidarSearchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
+                           std::int16_t* high16, SearchWindows& windows);
+
 }  // namespace lidar_sgm

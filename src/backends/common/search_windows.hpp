@@ -24,6 +24,13 @@ class SearchWindows {
     count_.fill(static_cast<std::int16_t>(numDisparities));
   }
 
+  /// Sized for a frame, the windows left as they were: for a caller that sets every pixel.
+  void resize(int width, int height, int numDisparities) {
+    numDisparities_ = numDisparities;
+    first_.resize(width, height);
+    count_.resize(width, height);
+  }
+
   int width() const { return first_.width(); }
   int height() const { return first_.height(); }
   int numDisparities() const { return numDisparities_; }
@@ -43,7 +50,8 @@ class SearchWindows {
 
   /// Working storage of lidarSearchWindows, kept with the windows so that a frame of a size seen
   /// before allocates nothing: the extremes of each pixel's points over +-1 column (W x H), and
-  /// one row of their extremes over the rows around it; x16 disparities clamped to 16 bits (twice
+  /// one row of their extremes over the rows around it (lidarSearchWindows' own; a caller that
+  /// splits rows among threads brings one per thread); x16 disparities clamped to 16 bits (twice
   /// the lanes of int, and native 16-bit min and max in every SIMD set).
   struct Scratch {
     std::vector<std::int16_t> lowest16, highest16, rowLowest16, rowHighest16;

@@ -120,9 +120,14 @@ HWY_INLINE T* WindowOfSlot(T* slotValues, const std::int16_t* first, const std::
   windowFirst = first == nullptr ? 0 : first[x];
   windowCount = first == nullptr ? D : count[x];
   if (windowCount < D) {
-    // Only the entries outside the window: the step writes every entry inside it.
-    std::fill(slotValues, slotValues + windowFirst, pathSentinel<T>());
-    std::fill(slotValues + windowFirst + windowCount, slotValues + D, pathSentinel<T>());
+    // The whole slot in whole vectors (D is a multiple of 16), then the step overwrites the
+    // window: a few stores of fixed width instead of two fills of a length known only now.
+    const typename PathTags<T>::Full df;
+    const typename PathTags<T>::Tail dt;
+    const int N = static_cast<int>(hn::Lanes(df));
+    int i = 0;
+    for (; i + N <= D; i += N) hn::StoreU(hn::Set(df, pathSentinel<T>()), df, slotValues + i);
+    for (; i < D; i += static_cast<int>(hn::Lanes(dt))) hn::StoreU(hn::Set(dt, pathSentinel<T>()), dt, slotValues + i);
   }
   return slotValues + windowFirst;
 }

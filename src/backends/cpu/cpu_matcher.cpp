@@ -56,12 +56,27 @@ void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std
   if (plan.useLidar) lidarPixels(f);
   if (plan.gatedSearch) {
     // The LiDAR gate (shared with cpu_ref): the sweeps step and select over these windows only.
-    lidarSearchWindows(*in.lidar, plan.minDisparity, plan.D, plan.params.gatedSearchRows,
-                       plan.params.gatedSearchMargin, windows_);
+    searchWindows(f);
     f.windows = &windows_;
   }
   out.timings.census = msSince(start);
   runStages(f, disparity);
+}
+
+// lidarSearchWindows' two passes, each with its rows split among the threads: the vertical
+// pass reads 2 * rows + 1 rows of extremes per row: single-threaded, it cost more than the gate saved.
+void CpuMatcher::searchWindows(const Frame& f) {
+  const FramePlan& plan = f.plan;
+  const LidarPoints& points = *f.lidar;
+  prepareLidarSearchWindows(points, plan.D, windows_);
+  parallelRanges(plan.height, f.threads, [&](int y0, int y1) { lidarSearchExtremes(points, y0, y1, windows_); });
+  const std::size_t width = static_cast<std::size_t>(plan.width);
+  windowRows_.resize(2 * width * static_cast<std::size_t>(f.threads));
+  parallelRanges(plan.height, f.threads, [&](int y0, int y1) {
+    std::int16_t* low16 = windowRows_.data() + 2 * width * static_cast<std::size_t>(threadIndex());
+    lidarSearchWindowRows(plan.minDisparity, plan.params.gatedSearchRows, plan.params.gatedSearchMargin, y0, y1,
+                          low16, low16 + width, windows_);
+  });
 }
 
 // The third camera's census image, and the layout of the right census planes. The pair's census

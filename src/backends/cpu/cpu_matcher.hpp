@@ -100,6 +100,8 @@ class CpuMatcher final : public MatcherBackend {
   // Before the sweeps (cpu_matcher.cpp).
   void censusImages(Frame& frame, const FrameInputs& in);
   void lidarPixels(const Frame& frame);
+  /// The gated search's windows (lidarSearchWindows, rows split among the threads).
+  void searchWindows(const Frame& frame);
   void runStages(const Frame& frame, ImageView<std::int16_t> disparity);
   /// Grows the buffers of the sweeps and the selection to the frame (kept between frames).
   void prepareBuffers(const Frame& frame);
@@ -157,6 +159,7 @@ class CpuMatcher final : public MatcherBackend {
   std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
   SearchWindows windows_;  // the gated search's windows (Parameters::gatedSearch)
+  std::vector<std::int16_t> windowRows_;  // ... each thread's two rows of their vertical pass
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;
   Image<std::int16_t> rightIndex_;
