@@ -94,8 +94,9 @@ void printUsage(const char* program) {
       "                          densifier,densifier_half (default: all, or with -kitti_frame those two)\n"
       "  -num_disparities N      (default 128)\n"
       "  -paths 4|8              SGM paths of every configuration but paths8 (default 4)\n"
-      "  -gated_search [-gated_search_margin M -gated_search_rows R]   every configuration with the\n"
-      "                          LiDAR-gated search (Parameters::gatedSearch; default off, M 8, R 6)\n"
+      "  -no_gated_search        every configuration over the whole disparity range (default: fused\n"
+      "                          frames with the LiDAR-gated search, Parameters::gatedSearch)\n"
+      "  -gated_search_margin M -gated_search_rows R   the gate's margin and rows (default 12, 6)\n"
       "  -no_hidden_lidar_filter the whole frame without the hidden-LiDAR filter (its stereo witness)\n"
       "  -hidden_lidar_scale S   the filter's stereo witness at scale S: 0.5 (default), 0.25 or 1\n"
       "  -no_lidar_anchor        the whole frame without the LiDAR-anchored sub-pixel disparity\n"
@@ -122,7 +123,7 @@ apps::Arguments parseArguments(int argc, char** argv) {
                          {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
                           "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame",
                           "gated_search_margin", "gated_search_rows", "hidden_lidar_scale"},
-                         {"synthetic", "growth", "gated_search", "no_hidden_lidar_filter", "no_lidar_anchor"});
+                         {"synthetic", "growth", "no_gated_search", "no_hidden_lidar_filter", "no_lidar_anchor"});
 }
 
 Options optionsFrom(const apps::Arguments& args) {
@@ -148,7 +149,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.kittiFrame = args.text("kitti_frame", o.kittiFrame);
   o.synthetic = args.has("synthetic");
   o.growth = args.has("growth");
-  o.gate.gatedSearch = args.has("gated_search");
+  o.gate.gatedSearch = !args.has("no_gated_search");
   o.hiddenLidar = !args.has("no_hidden_lidar_filter");
   o.lidarAnchor = !args.has("no_lidar_anchor");
   o.witnessScale = static_cast<float>(args.number("hidden_lidar_scale", o.witnessScale));
@@ -309,10 +310,10 @@ void printSettings(const Options& o, const Frame& frame, Backend backend, const 
   }
   std::printf("  paths:        %d (8 in the \"fused, 8 paths\" row)\n", base.paths);
   if (base.gatedSearch) {
-    std::printf("  search:       LiDAR-gated (-gated_search_margin %d -gated_search_rows %d); stereo-only: the full range\n",
+    std::printf("  search:       fused frames LiDAR-gated (-gated_search_margin %d -gated_search_rows %d); others: the full range\n",
                 base.gatedSearchMargin, base.gatedSearchRows);
   } else {
-    std::printf("  search:       the full range at every pixel (no -gated_search)\n");
+    std::printf("  search:       the full range at every pixel (-no_gated_search)\n");
   }
   std::printf("  mode:         ");
   for (std::size_t i = 0; i < configs.size(); ++i) std::printf("%s%s", i ? "; " : "", configs[i].label.c_str());

@@ -8,9 +8,10 @@
 #      from CMake here too, so that the tree built is the same on every machine
 #   3. the CUDA tests against cpu_ref, the core's tests, the PGM frame tests
 #   4. lidar_sgm_bench on .gpu_check/frame: fused, stereo-only, LiDAR-only at 4 and 8 paths, fused
-#      at half scale, 128 disparities
+#      at half scale, 128 disparities, the whole range at every pixel (-no_gated_search: libSGM has
+#      no gate)
 #   5. libSGM built from .gpu_check/libSGM with nvcc, and timed on the same pair (4 and 8 paths)
-#   6. the fused frame with -gated_search
+#   6. the fused frame as the tools run it, with the LiDAR-gated search (the default)
 #   7. compute-sanitizer's memcheck over the CUDA test cases, racecheck over those at one host
 #      thread (last: the slowest)
 #   8. a table: ours (kernel, with transfers) beside libSGM
@@ -289,8 +290,8 @@ step build "$( ((dry_run)) && echo 1500 || echo 300)" build_targets
 gpu_step test_backends 180 cuda_tests
 gpu_step test_core 120 "$build/tests/test_core"
 gpu_step test_bench 30 "$build/tests/test_bench"
-gpu_step bench_paths4 120 bench 4 fused,stereo,lidar,half
-gpu_step bench_paths8 90 bench 8 fused,stereo,lidar
+gpu_step bench_paths4 120 bench 4 fused,stereo,lidar,half -no_gated_search
+gpu_step bench_paths8 90 bench 8 fused,stereo,lidar -no_gated_search
 if [[ -d "$prep/libSGM" ]] || ((!dry_run)); then
   step libsgm_build "$( ((dry_run)) && echo 600 || echo 180)" libsgm_build
 else
@@ -300,7 +301,7 @@ fi
 gpu_step libsgm_paths4 60 libsgm_run 4
 gpu_step libsgm_paths8 60 libsgm_run 8
 # The LiDAR-gated search on the fused frame (its own log, outside the table: libSGM has no gate).
-gpu_step bench_gated 60 bench 4 fused -gated_search
+gpu_step bench_gated 60 bench 4 fused
 # The sanitizers last: they are the slowest steps, and get what is left of the budget after the
 # figures.
 gpu_step memcheck 90 cuda_sanitizer memcheck

@@ -142,9 +142,10 @@ std::string rangeText(const GroupRunOptions& run) {
 
 /// Which disparities each pixel searches (Parameters::gatedSearch).
 std::string searchText(const Parameters& matcher) {
-  if (!matcher.gatedSearch) return "the whole range at every pixel";
-  return "LiDAR-gated (-gated_search, margin " + std::to_string(matcher.gatedSearchMargin) + " px, +-" +
-         std::to_string(matcher.gatedSearchRows) + " rows; the whole range where no point is and without LiDAR)";
+  if (!matcher.gatedSearch) return "the whole range at every pixel (-no_gated_search)";
+  return "LiDAR-gated in fused frames (margin " + std::to_string(matcher.gatedSearchMargin) + " px, +-" +
+         std::to_string(matcher.gatedSearchRows) +
+         " rows; the whole range where no point is, in LiDAR-only and in stereo-only frames)";
 }
 
 /// What the run will do, before it loads anything: it takes minutes, so it never starts unseen.

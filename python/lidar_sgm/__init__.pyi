@@ -72,7 +72,7 @@ class Densifier:
     alpha=0.7, alpha_mode="fixed", sigma=2.0, lidar_cost_cap=62, disparity_range="lidar",
     num_disparities=128, min_disparity=0, paths=4, p1=10, p2=100, uniqueness=0, no_lr_check=False,
     lr_check_with_lidar=False, lr_max_diff=2, median=5, census="9x7", stereo_cost_without_lidar=False,
-    lidar_coverage_rows=6, gated_search=False, gated_search_margin=8, gated_search_rows=6, scale=1.0, threads=0, backend="auto", min_confidence=0.5,
+    lidar_coverage_rows=6, no_gated_search=False, gated_search_margin=12, gated_search_rows=6, scale=1.0, threads=0, backend="auto", min_confidence=0.5,
     no_confidence=False, no_sky_filter=False, sky_texture=1.0, no_outlier_filter=False,
     outlier_min_neighbours=4, frame="lidar", max_depth=80.0, stride=1, keep_organized=False,
     no_occlusion_filter=False, no_crop_to_scan=False (help(lidar_sgm.Densifier) prints them from

@@ -48,7 +48,7 @@ FramePlan planFrame(const Parameters& params, MatchMode mode, int width, int hei
   plan.lrCheck = mode == MatchMode::StereoOnly ? params.lrCheck
                                                : mode == MatchMode::Fused && params.lrCheck && params.lrCheckWithLidar;
   plan.lrCheckTrustsLidar = mode == MatchMode::Fused;
-  plan.gatedSearch = params.gatedSearch && plan.useLidar;
+  plan.gatedSearch = params.gatedSearch && mode == MatchMode::Fused;
   plan.confidence = params.confidence;
   plan.confidenceLr = params.confidence && mode != MatchMode::LidarOnly;
   return plan;

@@ -42,7 +42,7 @@ struct FramePlan {
   bool lrCheckTrustsLidar = false;
 
   /// Each pixel searches its LiDAR window only (Parameters::gatedSearch, lidarSearchWindows):
-  /// with LiDAR points (fused, LiDAR-only); a stereo-only frame keeps the full range.
+  /// fused frames only; stereo-only and LiDAR-only frames keep the full range.
   bool gatedSearch = false;
 
   bool confidence = false;    ///< the backend computes the peak-ratio margin and S1

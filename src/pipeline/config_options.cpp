@@ -133,20 +133,20 @@ std::vector<DensifierOption> makeTable() {
                  c.matcher.lidarCoverageRows = parseOptionInteger("lidar_coverage_rows", s);
                },
                [](const C& c) { return std::to_string(c.matcher.lidarCoverageRows); }});
-  t.push_back({"gated_search", K::Flag, kNoValue, G::Method, S::Disparity,
-               "with LiDAR, search each pixel's disparities only around the LiDAR points within +-1 column and "
-               "+-gated_search_rows rows (min - margin .. max + margin, widened to a multiple of 16); the full range "
-               "elsewhere and without LiDAR (default: off; backends cpu_ref and cpu)",
-               [](C& c, const std::string& s) { c.matcher.gatedSearch = flagValue("gated_search", s); },
-               [](const C& c) { return flagText(c.matcher.gatedSearch); }});
+  t.push_back({"no_gated_search", K::Flag, kNoValue, G::Method, S::Disparity,
+               "search the whole disparity range at every pixel; by default a fused frame searches each pixel's "
+               "disparities only around the LiDAR points within +-1 column and +-gated_search_rows rows (min - "
+               "margin .. max + margin, widened to a multiple of 16), the whole range elsewhere",
+               [](C& c, const std::string& s) { c.matcher.gatedSearch = !flagValue("no_gated_search", s); },
+               [](const C& c) { return flagText(!c.matcher.gatedSearch); }});
   t.push_back({"gated_search_margin", K::Integer, "M", G::Method, S::Disparity,
-               "-gated_search: the window's widening beyond the LiDAR disparities on each side [px], in [0, 512]",
+               "the gated search: the window's widening beyond the LiDAR disparities on each side [px], in [0, 512]",
                [](C& c, const std::string& s) {
                  c.matcher.gatedSearchMargin = parseOptionInteger("gated_search_margin", s);
                },
                [](const C& c) { return std::to_string(c.matcher.gatedSearchMargin); }});
   t.push_back({"gated_search_rows", K::Integer, "R", G::Method, S::Disparity,
-               "-gated_search: a pixel is gated by the LiDAR points within +-R rows (and +-1 column), in [0, 64]",
+               "the gated search: a pixel is gated by the LiDAR points within +-R rows (and +-1 column), in [0, 64]",
                [](C& c, const std::string& s) { c.matcher.gatedSearchRows = parseOptionInteger("gated_search_rows", s); },
                [](const C& c) { return std::to_string(c.matcher.gatedSearchRows); }});
   // ---- speed ----

@@ -481,7 +481,7 @@ std::vector<FrameCase> frameCases() {
        [](Parameters& p) { p.numDisparities = 64; p.minDisparity = 4; p.scale = 0.5f; }},
       // The LiDAR-gated search (gated_stages.hpp): windows from the scene's points.
       {"GatedFused631x479", 631, 479, 8, "fused", [](Parameters& p) { p.gatedSearch = true; }},
-      {"GatedLidar", 131, 61, 8, "lidar", [](Parameters& p) { p.numDisparities = 64; p.gatedSearch = true; }},
+      {"GatedLidarIsNotGated", 131, 61, 8, "lidar", [](Parameters& p) { p.numDisparities = 64; p.gatedSearch = true; }},
       {"GatedStereoIsNotGated", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.gatedSearch = true; }},
       {"GatedNarrowWindows", 97, 41, 8, "fused",
        [](Parameters& p) {
@@ -502,6 +502,9 @@ std::vector<FrameCase> frameCases() {
        [](Parameters& p) { p.numDisparities = 64; p.gatedSearch = true; p.gatedSearchMargin = 4; }},
       {"GatedHalfScale", 131, 61, 8, "fused",
        [](Parameters& p) { p.numDisparities = 64; p.scale = 0.5f; p.gatedSearch = true; p.gatedSearchMargin = 2; }},
+      {"GatedAdaptiveAlpha", 131, 61, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 64; p.alphaMode = AlphaMode::Adaptive; p.gatedSearch = true; }},
+      {"GatedDefaults", 131, 61, 8, "fused", [](Parameters& p) { p = Parameters(); p.numDisparities = 64; }},
   };
   return cases;
 }
@@ -514,6 +517,9 @@ TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
     GTEST_SKIP() << "backend " << name << ": " << unavailableReason(backendFromString(name));
   }
   Parameters params;
+  // Every case searches the whole range unless it gates (the Gated* cases): fused frames gate by
+  // default, so without this the whole-range kernels would run on stereo and LiDAR-only cases only.
+  params.gatedSearch = false;
   c.tweak(params);
   params.threads = threads;
   const BackendScene scene =

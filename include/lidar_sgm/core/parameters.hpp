@@ -64,17 +64,19 @@ struct Parameters {
   /// check would only cost density there. 6 rows bridge an HDL-64E's beam gaps in KITTI
   /// images. In [1, 64].
   int lidarCoverageRows = 6;
-  /// LiDAR-gated disparity search (fused and LiDAR-only mode; stereo-only frames keep the full
-  /// range). A pixel with a LiDAR point within +-1 column and +-gatedSearchRows rows searches only
+  /// LiDAR-gated disparity search of fused frames: the LiDAR narrows the stereo search (tSGM's
+  /// prior). A pixel with a LiDAR point within +-1 column and +-gatedSearchRows rows searches only
   /// [min - gatedSearchMargin, max + gatedSearchMargin] of those points' disparities, widened to a
   /// multiple of 16 and kept inside [minDisparity, minDisparity + numDisparities); every other
   /// pixel searches the full range. The cost volume and the path sums hold only the windows
-  /// (backends/common/lidar_search_windows.hpp). Off by default; measured in docs/RESULTS.md.
-  /// Implemented by every backend (cpu_ref, cpu, cuda).
-  bool gatedSearch = false;
+  /// (backends/common/lidar_search_windows.hpp). Stereo-only frames have no LiDAR to gate with,
+  /// and LiDAR-only frames keep the full range too: their cost is the LiDAR's own, and the gate
+  /// measured worse there on simulated LiDAR (docs/RESULTS.md, "LiDAR-gated search"). On by
+  /// default; implemented by every backend (cpu_ref, cpu, cuda).
+  bool gatedSearch = true;
   /// Widening of a gated window beyond its LiDAR disparities on each side [px], in [0, 512]; like
   /// gatedSearchRows, in the pixels of the matched image (halved images at scale 0.5).
-  int gatedSearchMargin = 8;
+  int gatedSearchMargin = 12;
   int gatedSearchRows = 6;    ///< rows above and below a pixel whose LiDAR points gate it, in [0, 64]
   int medianSize = 5;         ///< median filter window: 0 (off), 3 or 5 (the paper uses 5)
   bool subpixel = true;       ///< parabola fit through the best cost and its two neighbours
