@@ -28,7 +28,7 @@ void copyDisparity(MatcherBackend& backend, ImageView<const std::int16_t> host, 
 // No silent fallback to the full search: a backend without the gated search refuses the option.
 void checkBackendSupports(const MatcherBackend& backend, const Parameters& params) {
   if (params.gatedSearch && !backend.searchesGatedWindows()) {
-    throw std::invalid_argument("invalid parameter gatedSearch (-gated_search): backend " + toString(backend.backend()) +
+    throw std::invalid_argument("invalid parameter gatedSearch (on by default; -no_gated_search turns it off): backend " + toString(backend.backend()) +
                                 " does not implement the gated search; use backend cpu or cpu_ref");
   }
 }
