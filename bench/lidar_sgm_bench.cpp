@@ -98,7 +98,8 @@ void printUsage(const char* program) {
       "                          frames with the LiDAR-gated search, Parameters::gatedSearch)\n"
       "  -gated_search_margin M -gated_search_rows R   the gate's margin and rows (default 12, 6)\n"
       "  -no_hidden_lidar_filter the whole frame without the hidden-LiDAR filter (its stereo witness)\n"
-      "  -hidden_lidar_scale S   the filter's stereo witness at scale S: 0.5 (default), 0.25 or 1\n"
+      "  -hidden_lidar_scale S   the filter's stereo witness at S times the frame's scale: 0.5 (default),\n"
+      "                          0.25 or 1\n"
       "  -no_lidar_anchor        the whole frame without the LiDAR-anchored sub-pixel disparity\n"
       "  -growth                 also time the fused frame at 3 sizes x 2 disparity counts\n"
       "  -h, --help              this help\n"
@@ -470,7 +471,7 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
   if (!o.hiddenLidar) std::printf("\nWhole frame without the hidden-LiDAR filter (-no_hidden_lidar_filter).");
   if (!o.lidarAnchor) std::printf("\nWhole frame without the LiDAR-anchored sub-pixel disparity (-no_lidar_anchor).");
   if (o.hiddenLidar && o.witnessScale != 0.5f) {
-    std::printf("\nWhole frame with the hidden-LiDAR filter's witness at scale %g (-hidden_lidar_scale).",
+    std::printf("\nWhole frame with the hidden-LiDAR filter's witness at %g times the frame's scale (-hidden_lidar_scale).",
                 static_cast<double>(o.witnessScale));
   }
   std::printf("\nWhole frame: Densifier::run with the tools' defaults (fused; range from the LiDAR; confidence, "

@@ -242,8 +242,9 @@ std::vector<DensifierOption> makeTable() {
                [](C& c, const std::string& s) { c.hiddenLidar.minGap = parseOptionNumber("hidden_lidar_gap", s); },
                [](const C& c) { return number(c.hiddenLidar.minGap); }});
   t.push_back({"hidden_lidar_scale", K::Number, "S", G::Filters, S::Disparity,
-               "the stereo witness of the hidden-LiDAR filter matched at scale 0.5 (an eighth of the work), 0.25 "
-               "(a sixty-fourth: 3 instead of 10 ms a KITTI frame, a little less exact) or 1 (a little more exact)",
+               "the stereo witness of the hidden-LiDAR filter matched at S times the frame's scale: 0.5 (an eighth "
+               "of the frame's work), 0.25 (a sixty-fourth, a little less exact) or 1 (the frame's own, a little "
+               "more exact); only on the rows the LiDAR points span",
                [](C& c, const std::string& s) {
                  c.hiddenLidar.witnessScale = static_cast<float>(parseOptionNumber("hidden_lidar_scale", s));
                },

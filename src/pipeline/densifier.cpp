@@ -208,7 +208,7 @@ void Densifier::match(const LidarPoints* lidar) {
     samples = projected_.samples;  // the scan's samples, already at hand; the buffer is reused
     if (config_.hiddenLidar.enabled) {
       const auto witnessStart = std::chrono::steady_clock::now();
-      hidden = dropHiddenLidar(matchStereoWitness(left, right), *lidar, samples, config_.hiddenLidar);
+      hidden = dropHiddenLidar(matchStereoWitness(left, right, samples), *lidar, samples, config_.hiddenLidar);
       timings_.witness = millisecondsSince(witnessStart);
     }
     if (config_.lidarConsistency.enabled) inconsistent = dropInconsistentLidar(left, right, samples, config_.lidarConsistency);
@@ -246,41 +246,57 @@ int floorHalf(int value) { return value >= 0 ? value / 2 : -((-value + 1) / 2); 
 
 }  // namespace
 
-ImageView<const std::int16_t> Densifier::matchStereoWitness(const GrayImageView& left, const GrayImageView& right) {
+ImageView<const std::int16_t> Densifier::matchStereoWitness(const GrayImageView& left, const GrayImageView& right,
+                                                            const std::vector<LidarSample>& samples) {
   // Stereo alone over the fused frame's range, with the left-right check whatever the fused
-  // settings (an occluded pixel must have no vote) and without the confidence nobody reads; at
-  // the frame's scale, at half scale, or at quarter scale (the pair halved here, then matched at
-  // half scale). The fused matcher does it, before its own frame: its buffers serve both.
+  // settings (an occluded pixel must have no vote) and without the confidence nobody reads. Its
+  // scale is relative to the frame's: a half-scale frame's witness at the default 0.5 is matched
+  // at a quarter of the pair's pixels, as a full-scale frame's at half of them (the paper's fast
+  // mode keeps the witness at an eighth of its matching). Below half scale of the pair, the pair
+  // is halved here (once or twice), then matched at half scale. The fused matcher does it, before
+  // its own frame: its buffers serve both.
   Parameters p = usedParams_;
   p.lrCheck = true;
   p.confidence = false;
-  const float scale = config_.hiddenLidar.witnessScale;
-  const bool quarter = scale == 0.25f;
-  GrayImageView witnessLeft = left;
-  GrayImageView witnessRight = right;
-  if (quarter) {
-    witnessLeft = downscaleHalf(left, witnessLeft8_, witnessLeft16_);
-    witnessRight = downscaleHalf(right, witnessRight8_, witnessRight16_);
+  const float scale = usedParams_.scale * config_.hiddenLidar.witnessScale;
+  const int halvings = scale >= 0.5f ? 0 : scale >= 0.25f ? 1 : 2;  // of the pair, here
+  for (int i = 0; i < halvings; ++i) {
     // The halved pair's range: half of the frame's, widened to whole pixels.
     const int end = -floorHalf(-(p.minDisparity + p.numDisparities));
     p.minDisparity = floorHalf(p.minDisparity);
     p.numDisparities = end - p.minDisparity;
   }
-  if (scale != 1.0f) {
+  p.scale = scale == 1.0f ? 1.0f : 0.5f;
+  if (p.scale != 1.0f) {
     // Half scale searches half the range: an even start and a multiple of 32 that still covers it.
-    p.scale = 0.5f;
     const int end = p.minDisparity + p.numDisparities;
     p.minDisparity -= ((p.minDisparity % 2) + 2) % 2;
     p.numDisparities = std::min(512, 32 * ((end - p.minDisparity + 31) / 32));  // 512: the largest range
   }
-  matcher_->setParameters(p);
+  // The witness is read only at the points' pixels: it is matched on the rows the points span,
+  // with a margin for the paths to settle, starting on a whole block of the scaled pair (so its
+  // halved rows are those of the whole pair halved); the rows outside have no disparity.
+  const int block = p.scale == 1.0f ? 1 : 2 << halvings;
+  const WitnessRows rows = witnessRows(samples, left.height(), config_.hiddenLidar.witnessMarginRows, block);
   witnessDisparity_.resize(left.width(), left.height());
-  if (quarter) {
-    witnessHalfDisparity_.resize(witnessLeft.width(), witnessLeft.height());
-    matcher_->compute(witnessLeft, witnessRight, nullptr, witnessHalfDisparity_.view());
-    upscaleDisparity(std::as_const(witnessHalfDisparity_).view(), witnessDisparity_.view());
-  } else {
-    matcher_->compute(left, right, nullptr, witnessDisparity_.view());
+  const std::ptrdiff_t width = left.width();
+  std::fill(witnessDisparity_.data(), witnessDisparity_.data() + rows.begin * width, kInvalidDisparity);
+  std::fill(witnessDisparity_.data() + rows.end * width, witnessDisparity_.data() + left.height() * width,
+            kInvalidDisparity);
+  if (rows.end <= rows.begin) return witnessDisparity_.view();
+  GrayImageView pairLeft = rowsOf(left, rows.begin, rows.end);
+  GrayImageView pairRight = rowsOf(right, rows.begin, rows.end);
+  for (int i = 0; i < halvings; ++i) {
+    pairLeft = downscaleHalf(pairLeft, witnessLeft8_[i], witnessLeft16_[i]);
+    pairRight = downscaleHalf(pairRight, witnessRight8_[i], witnessRight16_[i]);
+    witnessHalfDisparity_[i].resize(pairLeft.width(), pairLeft.height());
+  }
+  matcher_->setParameters(p);
+  // The last halving's pair is matched, its disparity brought up through each halving's size.
+  const ImageView<std::int16_t> band = rowsOf(witnessDisparity_.view(), rows.begin, rows.end);
+  matcher_->compute(pairLeft, pairRight, nullptr, halvings == 0 ? band : witnessHalfDisparity_[halvings - 1].view());
+  for (int i = halvings - 1; i >= 0; --i) {
+    upscaleDisparity(std::as_const(witnessHalfDisparity_[i]).view(), i == 0 ? band : witnessHalfDisparity_[i - 1].view());
   }
   matcher_->setParameters(usedParams_);
   return witnessDisparity_.view();

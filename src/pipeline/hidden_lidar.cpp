@@ -17,6 +17,22 @@ void validate(const HiddenLidarOptions& o) {
   if (o.witnessScale != 1.0f && o.witnessScale != 0.5f && o.witnessScale != 0.25f) {
     fail("witnessScale must be 1, 0.5 or 0.25");
   }
+  if (o.witnessMarginRows < 0 || o.witnessMarginRows > 4096) fail("witnessMarginRows must be in [0, 4096] rows");
+}
+
+WitnessRows witnessRows(const std::vector<LidarSample>& samples, int height, int marginRows, int block) {
+  int top = height;
+  int bottom = -1;
+  for (const LidarSample& s : samples) {
+    if (s.y < 0 || s.y >= height) continue;  // outside the image: never read
+    top = std::min(top, s.y);
+    bottom = std::max(bottom, s.y);
+  }
+  WitnessRows rows;
+  if (bottom < top) return rows;
+  rows.begin = std::max(0, top - marginRows) / block * block;
+  rows.end = std::min(height, (std::min(height, bottom + 1 + marginRows) + block - 1) / block * block);
+  return rows;
 }
 
 std::size_t dropHiddenLidar(ImageView<const std::int16_t> stereo, const LidarPoints& scan,

@@ -43,7 +43,7 @@ static_assert(fieldCount<Parameters>() == 24, "Parameters changed: compare the n
 static_assert(fieldCount<geometry::ProjectionOptions>() == 3, "ProjectionOptions changed: compare it here");
 static_assert(fieldCount<geometry::OcclusionFilter>() == 6, "OcclusionFilter changed: compare it here");
 static_assert(fieldCount<geometry::ReprojectionOptions>() == 4, "ReprojectionOptions changed: compare it here");
-static_assert(fieldCount<HiddenLidarOptions>() == 7, "HiddenLidarOptions changed: compare it here");
+static_assert(fieldCount<HiddenLidarOptions>() == 8, "HiddenLidarOptions changed: compare it here");
 static_assert(fieldCount<LidarAnchorOptions>() == 7, "LidarAnchorOptions changed: compare it here");
 
 void expectEqual(const Parameters& a, const Parameters& b) {
@@ -113,6 +113,7 @@ void expectEqual(const DensifierConfig& a, const DensifierConfig& b) {
   EXPECT_EQ(a.hiddenLidar.supportHalfWidth, b.hiddenLidar.supportHalfWidth);
   EXPECT_EQ(a.hiddenLidar.supportHalfHeight, b.hiddenLidar.supportHalfHeight);
   EXPECT_EQ(a.hiddenLidar.witnessScale, b.hiddenLidar.witnessScale);
+  EXPECT_EQ(a.hiddenLidar.witnessMarginRows, b.hiddenLidar.witnessMarginRows);
   EXPECT_EQ(a.lidarAnchor.enabled, b.lidarAnchor.enabled);
   EXPECT_EQ(a.lidarAnchor.maxDisparity, b.lidarAnchor.maxDisparity);
   EXPECT_EQ(a.lidarAnchor.halfWidth, b.lidarAnchor.halfWidth);

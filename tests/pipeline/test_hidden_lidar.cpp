@@ -110,7 +110,31 @@ TEST(HiddenLidar, ImpossibleOptionsAreNamed) {
   o = {};
   o.witnessScale = 0.3f;
   EXPECT_NE(message(o).find("witnessScale"), std::string::npos) << message(o);
+  o = {};
+  o.witnessMarginRows = -1;
+  EXPECT_NE(message(o).find("witnessMarginRows"), std::string::npos) << message(o);
+  o.witnessMarginRows = 4097;
+  EXPECT_NE(message(o).find("witnessMarginRows"), std::string::npos) << message(o);
+  o = {};
+  o.witnessScale = 0.3f;
   EXPECT_THROW(validate(o), std::invalid_argument);
+}
+
+TEST(HiddenLidar, TheWitnessRowsSpanThePointsWithTheMarginOnWholeBlocks) {
+  const auto rows = [](const std::vector<LidarSample>& samples, int margin, int block) {
+    const WitnessRows r = witnessRows(samples, 100, margin, block);
+    return std::pair<int, int>(r.begin, r.end);
+  };
+  using Rows = std::pair<int, int>;
+  EXPECT_EQ(rows({}, 16, 1), Rows(0, 0));                     // no point: nothing to match
+  EXPECT_EQ(rows({{5, -1, 16}, {5, 100, 16}}, 16, 1), Rows(0, 0));  // rows outside the image are never read
+  const std::vector<LidarSample> band = {{3, 41, 16}, {7, 30, 16}, {9, 52, 16}};
+  EXPECT_EQ(rows(band, 0, 1), Rows(30, 53));
+  EXPECT_EQ(rows(band, 5, 1), Rows(25, 58));
+  EXPECT_EQ(rows(band, 5, 4), Rows(24, 60));  // begin down, end up to a multiple of the block
+  EXPECT_EQ(rows(band, 5, 8), Rows(24, 64));
+  EXPECT_EQ(rows(band, 40, 1), Rows(0, 93));     // clamped at the top
+  EXPECT_EQ(rows(band, 4096, 8), Rows(0, 100));  // and at the bottom, even off a block
 }
 
 /// A textured plane at kDisparity with a stripe of LiDAR points far behind it (the background an
@@ -168,6 +192,50 @@ TEST(HiddenLidar, TheDensifierLeavesHiddenPointsOutOfTheFusedMatching) {
     EXPECT_GE(on.hidden, 60u) << "scale " << scale;  // most of the stripe's 80 points
     EXPECT_GT(on.witnessMs, 0.0);
     EXPECT_LT(on.wrongInBlock, off.wrongInBlock / 10) << "scale " << scale;
+  }
+}
+
+TEST(HiddenLidar, AWitnessOnThePointsRowsDropsWhatTheWholeFrameWitnessDrops) {
+  // A frame three times the scan's height: the witness on the points' rows and their margin
+  // finds the same hidden points as over the whole frame, so the fused frames are identical.
+  constexpr int kTall = 3 * kHeight;
+  const test::SyntheticStereo stereo = test::makeStereo(kWidth, kTall, [](double, double) { return kDisparity; });
+  std::vector<LidarSample> samples;
+  for (int y = kHeight; y < 2 * kHeight; y += 2) {
+    for (int x = 40; x < kWidth - 4; ++x) {
+      const bool hidden = x >= 100 && x < 108 && y >= kHeight + 20 && y < kHeight + 40;
+      samples.push_back({x, y, x16(hidden ? kDisparity - 12.0 : kDisparity)});
+    }
+  }
+  const LidarPoints lidar(kWidth, kTall, samples);
+  for (const float scale : {1.0f, 0.5f, 0.25f}) {
+    Image<std::int16_t> disparity[2];
+    std::size_t hidden[2] = {0, 0};
+    for (const int margin : {16, 4096}) {
+      DensifierConfig config;
+      config.computeCloud = false;
+      config.matcher.numDisparities = 48;
+      config.rangeMode = DisparityRangeMode::Fixed;
+      config.hiddenLidar.witnessScale = scale;
+      config.hiddenLidar.witnessMarginRows = margin;
+      Densifier densifier;
+      densifier.setConfig(config);
+      densifier.setStereoPair(stereo.left.view(), stereo.right.view());
+      densifier.runProjected(&lidar);
+      const int i = margin == 4096 ? 1 : 0;
+      hidden[i] = densifier.filterStats().hiddenLidar;
+      disparity[i] = Image<std::int16_t>(kWidth, kTall);
+      for (int y = 0; y < kTall; ++y) {
+        for (int x = 0; x < kWidth; ++x) disparity[i](x, y) = densifier.disparity()(x, y);
+      }
+    }
+    EXPECT_GE(hidden[0], 60u) << "scale " << scale;
+    EXPECT_EQ(hidden[0], hidden[1]) << "scale " << scale;
+    int differing = 0;
+    for (int y = 0; y < kTall; ++y) {
+      for (int x = 0; x < kWidth; ++x) differing += disparity[0](x, y) != disparity[1](x, y) ? 1 : 0;
+    }
+    EXPECT_EQ(differing, 0) << "scale " << scale;
   }
 }
 

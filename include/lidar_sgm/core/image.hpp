@@ -103,4 +103,16 @@ struct GrayImageView {
   int height() const { return gray8.empty() ? gray16.height : gray8.height; }
 };
 
+/// Rows [begin, end) of `image`, the same pixels (0 <= begin <= end <= height).
+template <typename T>
+ImageView<T> rowsOf(ImageView<T> image, int begin, int end) {
+  return ImageView<T>(image.row(begin), image.width, end - begin, image.stride);
+}
+inline GrayImageView rowsOf(const GrayImageView& image, int begin, int end) {
+  GrayImageView rows;
+  if (!image.gray8.empty()) rows.gray8 = rowsOf(image.gray8, begin, end);
+  if (!image.gray16.empty()) rows.gray16 = rowsOf(image.gray16, begin, end);
+  return rows;
+}
+
 }  // namespace lidar_sgm

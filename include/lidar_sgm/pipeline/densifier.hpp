@@ -3,6 +3,7 @@
 /// reproject. Every front end (the tools, the evaluation, the benches, SGMDensification) runs
 /// this class, so what the evaluation measures is what the tools ship. No PCL, no OpenCV.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -206,7 +207,8 @@ class Densifier {
   void prepareMatcher(const std::vector<LidarSample>& samples);
   void match(const LidarPoints* lidar);
   /// The stereo-only disparity the hidden-LiDAR check compares the points with (hidden_lidar.hpp).
-  ImageView<const std::int16_t> matchStereoWitness(const GrayImageView& left, const GrayImageView& right);
+  ImageView<const std::int16_t> matchStereoWitness(const GrayImageView& left, const GrayImageView& right,
+                                                   const std::vector<LidarSample>& samples);
   void reprojectResult();
   template <typename T>
   void copyPair(ImageView<const T> left, ImageView<const T> right, Image<T>& leftOut, Image<T>& rightOut);
@@ -228,11 +230,11 @@ class Densifier {
   std::unique_ptr<PostMatcherPasses> passes_;  ///< the passes after the matcher, with their buffers
   Backend matcherBackend_ = Backend::Auto;  ///< the backend matcher_ was created for
   Image<std::int16_t> witnessDisparity_;  ///< the stereo-only witness of the hidden-LiDAR check
-  // The witness at quarter scale (HiddenLidarOptions::witnessScale 0.25): the pair halved here,
-  // the halved pair's disparity.
-  Image<std::uint8_t> witnessLeft8_, witnessRight8_;
-  Image<std::uint16_t> witnessLeft16_, witnessRight16_;
-  Image<std::int16_t> witnessHalfDisparity_;
+  // The witness below half scale of the pair: the pair halved here once or twice, and the
+  // disparity of each halving's pair.
+  std::array<Image<std::uint8_t>, 2> witnessLeft8_, witnessRight8_;
+  std::array<Image<std::uint16_t>, 2> witnessLeft16_, witnessRight16_;
+  std::array<Image<std::int16_t>, 2> witnessHalfDisparity_;
   std::vector<LidarSample> keptSamples_;  ///< the points left in the matching, buffer reused per frame
   LidarPoints lidar_;                     ///< the frame's projected points (run), buffers reused per frame
   LidarPoints keptLidar_;                 ///< ... those left in the matching, when some were dropped
