@@ -246,7 +246,10 @@ TEST_P(BackendStages, CensusAndVerticalCostsAndTheirCombination) {
 TEST_P(BackendStages, LidarCostSupportCoverageAndFusion) {
   for (const StageCase& c : kStageCases) {
     const BackendScene scene = makeBackendScene(c.width, c.height, c.minDisparity, c.numDisparities, 5);
-    for (const auto& [sigma, cap] : {std::pair<float, int>{2.0f, 62}, {0.7f, 255}, {9.5f, 40}}) {
+    // 3.95 and 7.9 at cap 255: a point's costs span exactly 17 and 33 disparities, one more than
+    // a whole number of 16-byte vectors.
+    for (const auto& [sigma, cap] :
+         {std::pair<float, int>{2.0f, 62}, {0.7f, 255}, {9.5f, 40}, {3.95f, 255}, {7.9f, 255}}) {
       const LidarCostTable table(sigma, cap);
       MatchingCostVolume expected(c.width, c.height, c.numDisparities), actual(c.width, c.height, c.numDisparities);
       Image<std::uint8_t> supportExpected(c.width, c.height), supportActual(c.width, c.height);

@@ -78,10 +78,29 @@ void verticalCensusCostRow(const std::uint64_t* leftRow, ImageView<const std::ui
 void combineCameraCostRow(const std::uint8_t* horizontal, const std::uint8_t* vertical, std::size_t n,
                           std::uint8_t* combined);
 
+// lidar_cost.cpp: Eq. 4's table laid out per point. A point at d_P (x16) costs
+// table(16 * (q + j) - d_P) at the whole disparity q + j, q = floor((d_P - reach) / 16); with
+// r = d_P - reach - 16 q in [0, 16) that is table(16 j - reach - r), which depends on r alone. So
+// row r holds it for j in [0, width()), the cap beyond reach, and a point's costs are one
+// element-wise minimum of a row over the pixel's disparities from q on: no per-disparity lookup.
+class LidarCostRows {
+ public:
+  LidarCostRows() = default;
+  explicit LidarCostRows(const LidarCostTable& table);
+  int reach() const { return reach_; }
+  int width() const { return width_; }  // a multiple of 16, past the last entry below the cap
+  const std::uint8_t* row(int r) const { return rows_.data() + static_cast<std::size_t>(r) * width_; }
+
+ private:
+  int reach_ = 0;
+  int width_ = 0;
+  std::vector<std::uint8_t> rows_;
+};
+
 // lidar_cost.cpp: C_L (Eq. 4) of pixel (x, y) into cost[0 .. D-1]; returns whether a point
 // touches the pixel (false: every cost is 0, no information).
-bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, int x, int y, int minDisparity,
-                    int numDisparities, std::uint8_t* cost);
+bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, const LidarCostRows& rows, int x, int y,
+                    int minDisparity, int numDisparities, std::uint8_t* cost);
 
 // lidar_cost.cpp: 1 where a point lies in the pixel's 3x3 neighbourhood (lidarCostPixel's
 // return value, for a whole row at once), else 0.

@@ -104,6 +104,7 @@ void CpuMatcher::lidarPixels(const Frame& f) {
   const Parameters& p = plan.params;
   if (tableSigma_ != p.sigma || tableCap_ != p.lidarCostCap) {
     table_ = LidarCostTable(p.sigma, p.lidarCostCap);
+    lidarRows_ = LidarCostRows(table_);
     tableSigma_ = p.sigma;
     tableCap_ = p.lidarCostCap;
   }

@@ -168,6 +168,7 @@ class CpuMatcher final : public MatcherBackend {
   Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
   ConfidenceBuffers confidenceBuffers_;
   LidarCostTable table_;
+  LidarCostRows lidarRows_;  // table_ laid out per point's sub-pixel phase (lidarCostPixel)
   float tableSigma_ = 0;
   int tableCap_ = -1;
 };

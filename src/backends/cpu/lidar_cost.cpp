@@ -17,11 +17,33 @@ int floorDivide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 }  // namespace
 
-bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, int x, int y, int minDisparity,
-                    int numDisparities, std::uint8_t* cost) {
+LidarCostRows::LidarCostRows(const LidarCostTable& table) : reach_(static_cast<int>(table.entries().size())) {
+  // table(16 j - reach - r) is below the cap only while |16 j - reach - r| < reach, i.e.
+  // 16 j < 2 reach + r <= 2 reach + 15: j <= (2 reach + 14) / 16.
+  width_ = ((2 * reach_ + 14) / kDisparityScale + 1 + 15) / 16 * 16;
+  rows_.resize(static_cast<std::size_t>(kDisparityScale) * width_);
+  for (int r = 0; r < kDisparityScale; ++r) {
+    for (int j = 0; j < width_; ++j) rows_[static_cast<std::size_t>(r) * width_ + j] = table(kDisparityScale * j - reach_ - r);
+  }
+}
+
+namespace {
+
+// cost[j] = min(cost[j], row[j]) for j in [0, n), n a multiple of 16 (a vector minimum).
+void minimumInto(std::uint8_t* __restrict cost, const std::uint8_t* __restrict row, int n) {
+  for (int b = 0; b < n; b += 16) {
+    for (int k = 0; k < 16; ++k) cost[b + k] = std::min(cost[b + k], row[b + k]);
+  }
+}
+
+}  // namespace
+
+bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, const LidarCostRows& rows, int x, int y,
+                    int minDisparity, int numDisparities, std::uint8_t* cost) {
   const int width = points.width();
   const int height = points.height();
-  const int reach = static_cast<int>(table.entries().size());  // |diff16| >= reach costs the cap
+  const int reach = rows.reach();  // |diff16| >= reach costs the cap
+  const int span = rows.width();
   bool touched = false;
   std::memset(cost, table.cap(), static_cast<std::size_t>(numDisparities));
   // The points of the pixel itself and of its 8 neighbours are associated with it (Sec. III-B).
@@ -30,11 +52,16 @@ bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, int 
       for (const int* p = points.begin(nx, ny); p != points.end(nx, ny); ++p) {
         touched = true;
         const int dP = *p;
-        const int dBegin = std::max(0, floorDivide(dP - reach, kDisparityScale) - minDisparity);
-        const int dEnd = std::min(numDisparities - 1, floorDivide(dP + reach, kDisparityScale) + 1 - minDisparity);
-        for (int d = dBegin; d <= dEnd; ++d) {
-          const std::uint8_t c = table((minDisparity + d) * kDisparityScale - dP);
-          if (c < cost[d]) cost[d] = c;
+        const int q = floorDivide(dP - reach, kDisparityScale);
+        const std::uint8_t* row = rows.row(dP - reach - kDisparityScale * q);
+        const int first = q - minDisparity;  // the index of row[0] in cost
+        if (first >= 0 && first + span <= numDisparities) {
+          minimumInto(cost + first, row, span);
+        } else {
+          // At the ends of the range: the row's part inside it (the rest costs the cap anyway).
+          for (int j = std::max(0, -first); j < std::min(span, numDisparities - first); ++j) {
+            cost[first + j] = std::min(cost[first + j], row[j]);
+          }
         }
       }
     }
@@ -57,10 +84,12 @@ void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched) {
 
 void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDisparity, MatchingCostVolume& cost,
                ImageView<std::uint8_t> support, int threads) {
+  const LidarCostRows rows(table);
   parallelRanges(points.height(), threads, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < points.width(); ++x) {
-        const bool touched = lidarCostPixel(points, table, x, y, minDisparity, cost.numDisparities(), cost.at(x, y));
+        const bool touched =
+            lidarCostPixel(points, table, rows, x, y, minDisparity, cost.numDisparities(), cost.at(x, y));
         if (!support.empty()) support(x, y) = touched ? 1 : 0;
       }
     }
