@@ -2,14 +2,16 @@
 // the image, a selection network finds the median of 16 pixels at once in 16-bit lanes: the
 // partial network for the median of 25 where every pixel is valid (most pixels), else a full
 // sort in which the invalid marker (the smallest int16) sorts first, so each lane's lower
-// median of its valid pixels sits at index invalid + (valid - 1) / 2. Windows cut by the image
-// border take cpu_ref's path.
+// median of its valid pixels sits at index invalid + (valid - 1) / 2 (a merge sort network,
+// kSort25, for the 5x5 windows). Windows cut by the image border take cpu_ref's path.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "backends/cpu/median.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "backends/cpu/cpu_kernels.hpp"
@@ -34,6 +36,35 @@ std::int16_t medianPixel(ImageView<const std::int16_t> in, int radius, int x, in
   std::nth_element(window, window + (n - 1) / 2, window + n);
   return window[(n - 1) / 2];
 }
+
+// Batcher's odd-even merge sort of 32 inputs, less every comparator that touches an input at or
+// past 25: with those 7 set to the largest value they never move (a comparator puts the smaller
+// value first), so the rest sorts 25 values with 140 comparators instead of a selection sort's 300.
+struct Comparator {
+  std::uint8_t a, b;
+};
+constexpr int oddEvenMergeSort25(Comparator* out) {
+  constexpr int n = 32;
+  int count = 0;
+  for (int p = 1; p < n; p <<= 1) {
+    for (int k = p; k >= 1; k >>= 1) {
+      for (int j = k % p; j + k < n; j += 2 * k) {
+        for (int i = 0; i < k && i + j + k < n; ++i) {
+          if ((i + j) / (2 * p) != (i + j + k) / (2 * p) || i + j + k >= 25) continue;
+          if (out != nullptr) out[count] = {static_cast<std::uint8_t>(i + j), static_cast<std::uint8_t>(i + j + k)};
+          ++count;
+        }
+      }
+    }
+  }
+  return count;
+}
+constexpr int kSort25Size = oddEvenMergeSort25(nullptr);
+constexpr std::array<Comparator, kSort25Size> kSort25 = [] {
+  std::array<Comparator, kSort25Size> network{};
+  oddEvenMergeSort25(network.data());
+  return network;
+}();
 
 }  // namespace
 }  // namespace cpu
@@ -85,6 +116,18 @@ HWY_INLINE void CompareExchange(VI16& a, VI16& b) {
   const VI16 lo = hn::Min(a, b);
   b = hn::Max(a, b);
   a = lo;
+}
+
+// SelectValidMedian<25> through the pruned merge sort network kSort25: the same lower median of
+// the valid values per lane, for the windows of the 5x5 filter that hold an invalid pixel.
+HWY_INLINE VI16 SortValidMedian25(VI16* v, VI16 invalidCount) {
+  const DI16 d;
+  for (const Comparator& c : kSort25) CompareExchange(v[c.a], v[c.b]);
+  const auto valid = hn::Sub(hn::Set(d, std::int16_t{25}), invalidCount);
+  const auto target = hn::Add(invalidCount, hn::ShiftRight<1>(hn::Sub(valid, hn::Set(d, std::int16_t{1}))));
+  VI16 median = v[0];
+  for (int i = 1; i < 25; ++i) median = hn::IfThenElse(hn::Eq(target, hn::Set(d, static_cast<std::int16_t>(i))), v[i], median);
+  return median;
 }
 
 // Knuth's optimal 9-comparator network for 5 values.
@@ -160,7 +203,7 @@ void Median5RowInside(ImageView<const std::int16_t> in, int y, std::int16_t* col
       invalidCount = hn::Add(invalidCount, hn::VecFromMask(d, hn::Eq(v[k], invalid)));
     }
     // An invalid pixel stays invalid: the median removes outliers, it does not fill holes.
-    const auto median = SelectValidMedian<25>(v, hn::Neg(invalidCount));
+    const auto median = SortValidMedian25(v, hn::Neg(invalidCount));
     hn::StoreU(hn::IfThenElse(hn::Eq(hn::LoadU(d, in.row(y) + x), invalid), invalid, median), d, out + x);
   }
   for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
