@@ -183,28 +183,36 @@ void Median5RowInside(ImageView<const std::int16_t> in, int y, std::int16_t* col
     std::sort(c, c + 5);
     for (int k = 0; k < 5; ++k) rank[k][x] = c[k];
   }
-  x = 0;
-  for (; x < 2; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
-  for (; x + N + 2 <= width; x += N) {
-    auto anyInvalid = hn::Eq(hn::LoadU(d, rank[0] + x - 2), invalid);
-    for (int j = 1; j < 5; ++j) anyInvalid = hn::Or(anyInvalid, hn::Eq(hn::LoadU(d, rank[0] + x - 2 + j), invalid));
+  // The windows of the N pixels from `at` on (all inside the image).
+  const auto medians = [&](int at) {
+    auto anyInvalid = hn::Eq(hn::LoadU(d, rank[0] + at - 2), invalid);
+    for (int j = 1; j < 5; ++j) anyInvalid = hn::Or(anyInvalid, hn::Eq(hn::LoadU(d, rank[0] + at - 2 + j), invalid));
     if (hn::AllFalse(d, anyInvalid)) {
       VI16 A[5][5];
       for (int k = 0; k < 5; ++k) {
-        for (int j = 0; j < 5; ++j) A[k][j] = hn::LoadU(d, rank[k] + x - 2 + j);
+        for (int j = 0; j < 5; ++j) A[k][j] = hn::LoadU(d, rank[k] + at - 2 + j);
       }
-      hn::StoreU(MedianOfSortedColumns(A), d, out + x);
-      continue;
+      hn::StoreU(MedianOfSortedColumns(A), d, out + at);
+      return;
     }
     VI16 v[25];
     auto invalidCount = hn::Zero(d);  // minus the count: a true mask is -1
     for (int k = 0; k < 25; ++k) {
-      v[k] = hn::LoadU(d, in.row(y - 2 + k / 5) + x - 2 + k % 5);
+      v[k] = hn::LoadU(d, in.row(y - 2 + k / 5) + at - 2 + k % 5);
       invalidCount = hn::Add(invalidCount, hn::VecFromMask(d, hn::Eq(v[k], invalid)));
     }
     // An invalid pixel stays invalid: the median removes outliers, it does not fill holes.
     const auto median = SortValidMedian25(v, hn::Neg(invalidCount));
-    hn::StoreU(hn::IfThenElse(hn::Eq(hn::LoadU(d, in.row(y) + x), invalid), invalid, median), d, out + x);
+    hn::StoreU(hn::IfThenElse(hn::Eq(hn::LoadU(d, in.row(y) + at), invalid), invalid, median), d, out + at);
+  };
+  x = 0;
+  for (; x < 2; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
+  for (; x + N + 2 <= width; x += N) medians(x);
+  if (x < width - 2 && width >= N + 4) {
+    // The last windows inside the image: one more vector ending there, over pixels the loop
+    // already wrote (the same values again: out is not in), instead of one scalar window each.
+    medians(width - 2 - N);
+    x = width - 2;
   }
   for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
 }
