@@ -87,11 +87,13 @@ class LidarCostRows {
  public:
   LidarCostRows() = default;
   explicit LidarCostRows(const LidarCostTable& table);
+  int cap() const { return cap_; }
   int reach() const { return reach_; }
   int width() const { return width_; }  // a multiple of 16, past the last entry below the cap
   const std::uint8_t* row(int r) const { return rows_.data() + static_cast<std::size_t>(r) * width_; }
 
  private:
+  int cap_ = 0;
   int reach_ = 0;
   int width_ = 0;
   std::vector<std::uint8_t> rows_;
@@ -99,8 +101,8 @@ class LidarCostRows {
 
 // lidar_cost.cpp: C_L (Eq. 4) of pixel (x, y) into cost[0 .. D-1]; returns whether a point
 // touches the pixel (false: every cost is 0, no information).
-bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, const LidarCostRows& rows, int x, int y,
-                    int minDisparity, int numDisparities, std::uint8_t* cost);
+bool lidarCostPixel(const LidarPoints& points, const LidarCostRows& rows, int x, int y, int minDisparity,
+                    int numDisparities, std::uint8_t* cost);
 
 // lidar_cost.cpp: 1 where a point lies in the pixel's 3x3 neighbourhood (lidarCostPixel's
 // return value, for a whole row at once), else 0.

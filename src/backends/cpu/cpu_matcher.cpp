@@ -103,8 +103,7 @@ void CpuMatcher::lidarPixels(const Frame& f) {
   const FramePlan& plan = f.plan;
   const Parameters& p = plan.params;
   if (tableSigma_ != p.sigma || tableCap_ != p.lidarCostCap) {
-    table_ = LidarCostTable(p.sigma, p.lidarCostCap);
-    lidarRows_ = LidarCostRows(table_);
+    lidarRows_ = LidarCostRows(LidarCostTable(p.sigma, p.lidarCostCap));
     tableSigma_ = p.sigma;
     tableCap_ = p.lidarCostCap;
   }

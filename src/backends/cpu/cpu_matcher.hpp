@@ -167,8 +167,7 @@ class CpuMatcher final : public MatcherBackend {
   Image<std::uint8_t> touched_;  // 1 where a LiDAR point lies in the pixel's 3x3 neighbourhood
   Image<std::uint16_t> lidarWeights_;  // w(p) of Eq. 5 with an adaptive alpha (a fixed one needs none)
   ConfidenceBuffers confidenceBuffers_;
-  LidarCostTable table_;
-  LidarCostRows lidarRows_;  // table_ laid out per point's sub-pixel phase (lidarCostPixel)
+  LidarCostRows lidarRows_;  // Eq. 4's table for the sigma and cap below, laid out per point's sub-pixel phase
   float tableSigma_ = 0;
   int tableCap_ = -1;
 };

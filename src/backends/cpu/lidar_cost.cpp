@@ -17,7 +17,8 @@ int floorDivide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 }  // namespace
 
-LidarCostRows::LidarCostRows(const LidarCostTable& table) : reach_(static_cast<int>(table.entries().size())) {
+LidarCostRows::LidarCostRows(const LidarCostTable& table)
+    : cap_(table.cap()), reach_(static_cast<int>(table.entries().size())) {
   // table(16 j - reach - r) is below the cap only while |16 j - reach - r| < reach, i.e.
   // 16 j < 2 reach + r <= 2 reach + 15: j <= (2 reach + 14) / 16.
   width_ = ((2 * reach_ + 14) / kDisparityScale + 1 + 15) / 16 * 16;
@@ -38,14 +39,14 @@ void minimumInto(std::uint8_t* __restrict cost, const std::uint8_t* __restrict r
 
 }  // namespace
 
-bool lidarCostPixel(const LidarPoints& points, const LidarCostTable& table, const LidarCostRows& rows, int x, int y,
-                    int minDisparity, int numDisparities, std::uint8_t* cost) {
+bool lidarCostPixel(const LidarPoints& points, const LidarCostRows& rows, int x, int y, int minDisparity,
+                    int numDisparities, std::uint8_t* cost) {
   const int width = points.width();
   const int height = points.height();
   const int reach = rows.reach();  // |diff16| >= reach costs the cap
   const int span = rows.width();
   bool touched = false;
-  std::memset(cost, table.cap(), static_cast<std::size_t>(numDisparities));
+  std::memset(cost, rows.cap(), static_cast<std::size_t>(numDisparities));
   // The points of the pixel itself and of its 8 neighbours are associated with it (Sec. III-B).
   for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
     for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
@@ -88,8 +89,7 @@ void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDi
   parallelRanges(points.height(), threads, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       for (int x = 0; x < points.width(); ++x) {
-        const bool touched =
-            lidarCostPixel(points, table, rows, x, y, minDisparity, cost.numDisparities(), cost.at(x, y));
+        const bool touched = lidarCostPixel(points, rows, x, y, minDisparity, cost.numDisparities(), cost.at(x, y));
         if (!support.empty()) support(x, y) = touched ? 1 : 0;
       }
     }

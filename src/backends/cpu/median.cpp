@@ -94,10 +94,23 @@ HWY_INLINE VI16 SelectMedian(VI16* v) {
   return v[n / 2];
 }
 
+// Per lane of `sorted` (ascending, the invalid marker first): the lower median of the valid
+// values, at index invalid + (valid - 1) / 2.
+template <int n>
+HWY_INLINE VI16 PickValidMedian(const VI16* sorted, VI16 invalidCount) {
+  const DI16 d;
+  const auto valid = hn::Sub(hn::Set(d, static_cast<std::int16_t>(n)), invalidCount);
+  const auto target = hn::Add(invalidCount, hn::ShiftRight<1>(hn::Sub(valid, hn::Set(d, std::int16_t{1}))));
+  VI16 median = sorted[0];
+  for (int i = 1; i < n; ++i) {
+    median = hn::IfThenElse(hn::Eq(target, hn::Set(d, static_cast<std::int16_t>(i))), sorted[i], median);
+  }
+  return median;
+}
+
 // Full sort network (selection sort), then per lane the lower median of the valid values.
 template <int n>
 HWY_INLINE VI16 SelectValidMedian(VI16* v, VI16 invalidCount) {
-  const DI16 d;
   for (int i = 0; i + 1 < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
       const VI16 lo = hn::Min(v[i], v[j]);
@@ -105,11 +118,7 @@ HWY_INLINE VI16 SelectValidMedian(VI16* v, VI16 invalidCount) {
       v[i] = lo;
     }
   }
-  const auto valid = hn::Sub(hn::Set(d, static_cast<std::int16_t>(n)), invalidCount);
-  const auto target = hn::Add(invalidCount, hn::ShiftRight<1>(hn::Sub(valid, hn::Set(d, std::int16_t{1}))));
-  VI16 median = v[0];
-  for (int i = 1; i < n; ++i) median = hn::IfThenElse(hn::Eq(target, hn::Set(d, static_cast<std::int16_t>(i))), v[i], median);
-  return median;
+  return PickValidMedian<n>(v, invalidCount);
 }
 
 HWY_INLINE void CompareExchange(VI16& a, VI16& b) {
@@ -121,13 +130,8 @@ HWY_INLINE void CompareExchange(VI16& a, VI16& b) {
 // SelectValidMedian<25> through the pruned merge sort network kSort25: the same lower median of
 // the valid values per lane, for the windows of the 5x5 filter that hold an invalid pixel.
 HWY_INLINE VI16 SortValidMedian25(VI16* v, VI16 invalidCount) {
-  const DI16 d;
   for (const Comparator& c : kSort25) CompareExchange(v[c.a], v[c.b]);
-  const auto valid = hn::Sub(hn::Set(d, std::int16_t{25}), invalidCount);
-  const auto target = hn::Add(invalidCount, hn::ShiftRight<1>(hn::Sub(valid, hn::Set(d, std::int16_t{1}))));
-  VI16 median = v[0];
-  for (int i = 1; i < 25; ++i) median = hn::IfThenElse(hn::Eq(target, hn::Set(d, static_cast<std::int16_t>(i))), v[i], median);
-  return median;
+  return PickValidMedian<25>(v, invalidCount);
 }
 
 // Knuth's optimal 9-comparator network for 5 values.

@@ -69,7 +69,7 @@ void CpuMatcher::lidarCostRange(const Frame& f, int y, int x0, int x1, std::uint
   for (int x = x0; x < x1; ++x) {
     std::uint8_t* c = lidar + static_cast<std::size_t>(x - x0) * plan.D;
     if (touched[x] != 0) {
-      lidarCostPixel(*f.lidar, table_, lidarRows_, x, y, plan.minDisparity, plan.D, c);
+      lidarCostPixel(*f.lidar, lidarRows_, x, y, plan.minDisparity, plan.D, c);
     } else if (zeroUntouched) {
       std::memset(c, 0, static_cast<std::size_t>(plan.D));
     }
