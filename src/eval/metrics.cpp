@@ -75,11 +75,20 @@ ObjectSplitMetrics evaluateObjectSplit(ImageView<const std::int16_t> estimate, I
       if (error > 3.0 && error > 0.05 * gt) ++wrong[object];
     }
   }
+  m.estimatedBackground = estimated[0];
+  m.estimatedForeground = estimated[1];
+  m.wrongBackground = wrong[0];
+  m.wrongForeground = wrong[1];
+  return withShares(m);
+}
+
+ObjectSplitMetrics withShares(ObjectSplitMetrics m) {
   const auto share = [](long part, long whole) { return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0; };
-  m.background = share(wrong[0], estimated[0]);
-  m.foreground = share(wrong[1], estimated[1]);
-  m.total = share(wrong[0] + wrong[1], estimated[0] + estimated[1]);
-  m.density = share(estimated[0] + estimated[1], m.gtPixels);
+  const long estimated = m.estimatedBackground + m.estimatedForeground;
+  m.background = share(m.wrongBackground, m.estimatedBackground);
+  m.foreground = share(m.wrongForeground, m.estimatedForeground);
+  m.total = share(m.wrongBackground + m.wrongForeground, estimated);
+  m.density = share(estimated, m.gtPixels);
   return m;
 }
 

@@ -84,9 +84,12 @@ nlohmann::json methodJson(const MethodResult& method) {
   entry["ms"] = method.milliseconds;
   const auto splitJson = [](const ObjectSplitMetrics& o) -> nlohmann::json {
     return {{"background", o.background}, {"foreground", o.foreground}, {"total", o.total},
-            {"density", o.density},       {"gt_pixels", o.gtPixels}, {"foreground_pixels", o.foregroundPixels}};
+            {"density", o.density},       {"gt_pixels", o.gtPixels}, {"foreground_pixels", o.foregroundPixels},
+            {"estimated_background", o.estimatedBackground}, {"estimated_foreground", o.estimatedForeground},
+            {"wrong_background", o.wrongBackground}, {"wrong_foreground", o.wrongForeground}};
   };
   if (method.objectSplit) entry["object_split"] = splitJson(*method.objectSplit);
+  if (method.objectSplitFrameMean) entry["object_split_frame_mean"] = splitJson(*method.objectSplitFrameMean);
   if (method.objectSplitOnScan) entry["object_split_on_scan"] = splitJson(*method.objectSplitOnScan);
   if (method.uncovered) entry["uncovered"] = metricsJson(*method.uncovered);
   if (method.cloud3d) entry["cloud_3d"] = cloudDistanceJson(*method.cloud3d);
@@ -217,11 +220,15 @@ std::vector<MethodResult> methodMedians(const ProtocolResult& result) {
     entries[i].milliseconds = medianOf(milliseconds[i]);
     entries[i].numDisparities = 0;  // a range per frame, not a median
     entries[i].objectSplit.reset();
+    entries[i].objectSplitFrameMean.reset();
     entries[i].objectSplitOnScan.reset();
     entries[i].uncovered.reset();
     entries[i].cloud3d.reset();
-    if (!splits[i].empty()) entries[i].objectSplit = meanObjectSplit(splits[i]);
-    if (!splitsOnScan[i].empty()) entries[i].objectSplitOnScan = meanObjectSplit(splitsOnScan[i]);
+    if (!splits[i].empty()) {
+      entries[i].objectSplit = pooledObjectSplit(splits[i]);
+      entries[i].objectSplitFrameMean = meanObjectSplit(splits[i]);
+    }
+    if (!splitsOnScan[i].empty()) entries[i].objectSplitOnScan = pooledObjectSplit(splitsOnScan[i]);
     if (!uncovered[i].empty()) entries[i].uncovered = medianOver(uncovered[i]);
     if (!clouds3d[i].empty()) entries[i].cloud3d = medianCloudDistance(clouds3d[i]);
   }

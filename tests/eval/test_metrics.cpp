@@ -56,6 +56,10 @@ TEST(Metrics, ObjectSplitCountsWrongPixelsAmongTheEstimatedOnesPerSide) {
   EXPECT_DOUBLE_EQ(m.foreground, 1.0);
   EXPECT_DOUBLE_EQ(m.total, 2.0 / 4.0);
   EXPECT_DOUBLE_EQ(m.density, 4.0 / 5.0);
+  EXPECT_EQ(m.estimatedBackground, 2);  // the counts behind the shares, for a sum over frames
+  EXPECT_EQ(m.estimatedForeground, 2);
+  EXPECT_EQ(m.wrongBackground, 0);
+  EXPECT_EQ(m.wrongForeground, 2);
   const std::uint8_t small[2] = {0, 0};
   EXPECT_THROW(eval::evaluateObjectSplit(ImageView<const std::int16_t>(estValues, w, 1),
                                          ImageView<const float>(gtValues, w, 1), ImageView<const std::uint8_t>(small, 2, 1)),

@@ -209,6 +209,51 @@ TEST(MethodMedians, KeepsAlphasAndTheSweepsBestApart) {
   EXPECT_EQ(medians[2].metrics.gtPixels, 200);
 }
 
+
+// Table II over frames as KITTI's devkit summarises it: the counts summed, then the shares. A frame
+// with one object pixel, wrong, and one with 99, right: the pooled foreground error is 1 %, the
+// mean of the frames' shares 50 %.
+TEST(MethodMedians, TableTwoSumsTheFramesCountsAsKittisDevkitAndKeepsTheFrameMeanApart) {
+  ObjectSplitMetrics small;
+  small.gtPixels = 10;
+  small.foregroundPixels = 1;
+  small.estimatedBackground = 9;
+  small.estimatedForeground = 1;
+  small.wrongForeground = 1;
+  ObjectSplitMetrics large;
+  large.gtPixels = 200;
+  large.foregroundPixels = 99;
+  large.estimatedBackground = 100;
+  large.estimatedForeground = 99;
+  large.wrongBackground = 2;
+  ProtocolResult p;
+  for (const ObjectSplitMetrics& counts : {small, large}) {
+    MethodResult fused{{MethodKind::FusedSgm, 0.7}, metrics(0.9, 1, 0.1, 1), 1.0};
+    fused.objectSplit = withShares(counts);
+    p.frames.push_back({"d", counts.gtPixels == 10 ? "small" : "large", {fused}});
+  }
+  EXPECT_DOUBLE_EQ(p.frames[0].methods[0].objectSplit->foreground, 1.0);
+  const std::vector<MethodResult> medians = methodMedians(p);
+  ASSERT_EQ(medians.size(), 1u);
+  ASSERT_TRUE(medians[0].objectSplit && medians[0].objectSplitFrameMean);
+  const ObjectSplitMetrics& pooled = *medians[0].objectSplit;
+  EXPECT_DOUBLE_EQ(pooled.foreground, 1.0 / 100.0);
+  EXPECT_DOUBLE_EQ(pooled.background, 2.0 / 109.0);
+  EXPECT_DOUBLE_EQ(pooled.total, 3.0 / 209.0);
+  EXPECT_DOUBLE_EQ(pooled.density, 209.0 / 210.0);
+  EXPECT_EQ(pooled.wrongForeground, 1);
+  EXPECT_EQ(pooled.gtPixels, 210);
+  const ObjectSplitMetrics& mean = *medians[0].objectSplitFrameMean;
+  EXPECT_DOUBLE_EQ(mean.foreground, (1.0 + 0.0) / 2.0);
+  EXPECT_DOUBLE_EQ(mean.total, (1.0 / 10.0 + 2.0 / 199.0) / 2.0);
+  EXPECT_DOUBLE_EQ(mean.density, (1.0 + 199.0 / 200.0) / 2.0);
+  // Both on the paper's Table II: the pooled shares first, the frame mean in the last columns.
+  const std::string tables = paperTablesMarkdown(p);
+  EXPECT_NE(tables.find("as KITTI's devkit counts them"), std::string::npos) << tables;
+  EXPECT_NE(tables.find("| LiDAR-SGM (alpha 0.7) | 1.83 | 1.00 | 1.44 | 99.52 | 50.00 | 5.50 |"), std::string::npos)
+      << tables;
+}
+
 }  // namespace
 }  // namespace eval
 }  // namespace lidar_sgm

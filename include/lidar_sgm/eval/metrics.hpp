@@ -29,7 +29,8 @@ DisparityMetrics evaluateDisparity(ImageView<const std::int16_t> estimate,
 /// The paper's Table II on KITTI 2015's object split: the share of wrong pixels (error > 3 px and
 /// > 5 % of the GT, KITTI's D1) among the pixels that have an estimate, on the background
 /// (objectMap 0), the foreground (objectMap > 0) and all GT pixels, and the density (share of GT
-/// pixels with an estimate). Every GT pixel is scored (the paper excludes none).
+/// pixels with an estimate). Every GT pixel is scored (the paper excludes none). The counts behind
+/// the shares are kept, for a summary over frames that sums them as KITTI's devkit does.
 struct ObjectSplitMetrics {
   double background = 0;
   double foreground = 0;
@@ -37,6 +38,10 @@ struct ObjectSplitMetrics {
   double density = 0;
   long foregroundPixels = 0;  ///< GT pixels on objects
   long gtPixels = 0;
+  long estimatedBackground = 0;  ///< GT pixels with an estimate, off objects
+  long estimatedForeground = 0;  ///< ... on objects
+  long wrongBackground = 0;      ///< of those, wrong (> 3 px and > 5 %)
+  long wrongForeground = 0;
 };
 
 /// `objectMap` has the estimate's size; std::invalid_argument otherwise. Pixels where `exclude` (if
@@ -44,6 +49,10 @@ struct ObjectSplitMetrics {
 ObjectSplitMetrics evaluateObjectSplit(ImageView<const std::int16_t> estimate, ImageView<const float> groundTruth,
                                        ImageView<const std::uint8_t> objectMap,
                                        ImageView<const std::uint8_t> exclude = {});
+
+/// `counts` with its shares (background, foreground, total, density) computed from its counts
+/// (0 where a count they divide by is 0).
+ObjectSplitMetrics withShares(ObjectSplitMetrics counts);
 
 }  // namespace eval
 }  // namespace lidar_sgm

@@ -38,8 +38,12 @@ struct MethodResult {
   /// the sweep's best alpha (the fused method is judged at the paper's alpha).
   ConfidenceCurves confidence{};
   /// Frames with an object map (the KITTI142 protocol): the paper's Table II figures; for the
-  /// medians, the means over the frames (KITTI's evaluation averages its error rates per image).
+  /// medians, over all the frames' pixels (counts summed, then the shares: KITTI's devkit, whose
+  /// script filled the paper's Table II, sums its error and pixel counts over the images).
   std::optional<ObjectSplitMetrics> objectSplit{};
+  /// For the medians only: the same figures as the mean of the frames' shares (each frame weighs
+  /// the same, however many object pixels it has).
+  std::optional<ObjectSplitMetrics> objectSplitFrameMean{};
   /// The same without the pixels of the frame's objects whose GT lies off their own scan
   /// (scan_agreement.hpp); equal to objectSplit on a frame without such an object.
   std::optional<ObjectSplitMetrics> objectSplitOnScan{};
@@ -109,10 +113,15 @@ std::string markdownTable(const ProtocolResult& result);
 /// Per-field means of the object split over frames (counts summed).
 ObjectSplitMetrics meanObjectSplit(const std::vector<ObjectSplitMetrics>& frames);
 
+/// The object split over all the frames' pixels, as KITTI's devkit summarises it: the counts
+/// summed over the frames, then the shares (a frame weighs by its pixels).
+ObjectSplitMetrics pooledObjectSplit(const std::vector<ObjectSplitMetrics>& frames);
+
 /// The paper's tables for a protocol whose frames have an object map (KITTI142), from the
 /// medians of `result` beside the paper's own figures: Table I (median correct and RMSE, and
 /// correct on the GT pixels no input point covers) and Table II (error among the estimated pixels,
-/// background / foreground / total, and density; means over the frames). Empty when no method
+/// background / foreground / total, and density; over all the frames' pixels as KITTI's devkit counts them,
+/// then as the mean of the frames' shares). Empty when no method
 /// has the object split.
 std::string paperTablesMarkdown(const ProtocolResult& result);
 
