@@ -209,7 +209,6 @@ TEST(MethodMedians, KeepsAlphasAndTheSweepsBestApart) {
   EXPECT_EQ(medians[2].metrics.gtPixels, 200);
 }
 
-
 // Table II over frames as KITTI's devkit summarises it: the counts summed, then the shares. A frame
 // with one object pixel, wrong, and one with 99, right: the pooled foreground error is 1 %, the
 // mean of the frames' shares 50 %.

@@ -120,9 +120,8 @@ ObjectSplitMetrics pooledObjectSplit(const std::vector<ObjectSplitMetrics>& fram
 /// The paper's tables for a protocol whose frames have an object map (KITTI142), from the
 /// medians of `result` beside the paper's own figures: Table I (median correct and RMSE, and
 /// correct on the GT pixels no input point covers) and Table II (error among the estimated pixels,
-/// background / foreground / total, and density; over all the frames' pixels as KITTI's devkit counts them,
-/// then as the mean of the frames' shares). Empty when no method
-/// has the object split.
+/// background / foreground / total, and density, over all the frames' pixels as KITTI's devkit
+/// counts them; then the mean of the frames' shares). Empty when no method has the object split.
 std::string paperTablesMarkdown(const ProtocolResult& result);
 
 /// Every figure, machine-readable. Methods are named by their stable id (methodId), with
