@@ -163,7 +163,7 @@ HWY_INLINE VI16 MedianOfSortedColumns(VI16 (&A)[5][5]) {
 // One output row of the 5x5 median where the window is inside the image. The five-pixel columns
 // (rows y-2 .. y+2) are sorted once per row into `columns` (5 rank rows of `width`), then every
 // window reads its five sorted columns; windows with an invalid pixel (the invalid marker is the
-// smallest int16, so it is a column's rank 0) take the full sort of SelectValidMedian.
+// smallest int16, so it is a column's rank 0) take the full sort of SortValidMedian25.
 void Median5RowInside(ImageView<const std::int16_t> in, int y, std::int16_t* columns, std::int16_t* out) {
   const DI16 d;
   const int N = static_cast<int>(hn::Lanes(d));
