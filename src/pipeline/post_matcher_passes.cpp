@@ -76,7 +76,7 @@ void PostMatcherPasses::reproject(ImageView<const std::int16_t> disparity16,
                                   geometry::DenseCloud& cloud) {
 #ifdef LIDAR_SGM_HAVE_FAST_PASSES
   if (fast_) {
-    fast::depthImage(disparity16, calibration.focalBaseline(), options.maxDepth, depth, threads_);
+    fast::depthImage(disparity16, calibration.focalBaseline(), options.maxDepth, depth, *buffers_, threads_);
     fast::reproject(disparity16, calibration, options, cloud, *buffers_, threads_);
     return;
   }

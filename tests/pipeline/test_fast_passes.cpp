@@ -273,10 +273,13 @@ TEST_P(FastPasses, DepthAndCloudAreTheSpecifications) {
   for (const Size s : kSizes) {
     const geometry::StereoCalibration c = calibrationOf(s);
     const Padded<std::int16_t> d = disparityOf(s, 5, engine);
-    for (const double maxDepth : {80.0, 3.0, std::numeric_limits<double>::infinity()}) {
+    // The depth of d16 = 300 exactly, and the double below it: the last point kept, then dropped.
+    const double atBoundary = c.focalBaseline() * kDisparityScale / 300;
+    for (const double maxDepth : {80.0, 3.0, std::numeric_limits<double>::infinity(), atBoundary,
+                                  std::nextafter(atBoundary, 0.0)}) {
       Image<float> expectedDepth;
       geometry::depthImage(d.view(), c.focalBaseline(), maxDepth, expectedDepth);
-      fast::depthImage(d.view(), c.focalBaseline(), maxDepth, depth, threads());
+      fast::depthImage(d.view(), c.focalBaseline(), maxDepth, depth, buffers, threads());
       ASSERT_TRUE(samePixels(expectedDepth.view(), std::as_const(depth).view())) << s.width << "x" << s.height;
       for (const int stride : {1, 2, 3}) {
         for (const bool organized : {false, true}) {
@@ -299,7 +302,7 @@ TEST_P(FastPasses, DepthAndCloudAreTheSpecifications) {
   bad.stride = 0;
   EXPECT_THROW(fast::reproject(d.view(), calibrationOf({5, 4, 5}), bad, cloud, buffers, threads()), std::invalid_argument);
   EXPECT_THROW(fast::reproject(d.view(), calibrationOf({6, 4, 6}), {}, cloud, buffers, threads()), std::invalid_argument);
-  EXPECT_THROW(fast::depthImage(d.view(), 0.0, 80.0, depth, threads()), std::invalid_argument);
+  EXPECT_THROW(fast::depthImage(d.view(), 0.0, 80.0, depth, buffers, threads()), std::invalid_argument);
 }
 
 #endif  // LIDAR_SGM_HAVE_FAST_PASSES

@@ -17,6 +17,7 @@
 #include "lidar_sgm/geometry/reprojection.hpp"
 #include "lidar_sgm/pipeline/outlier_filter.hpp"
 #include "lidar_sgm/pipeline/sky_mask.hpp"
+#include "pipeline/fast/depth_table.hpp"
 
 namespace lidar_sgm {
 namespace fast {
@@ -33,7 +34,8 @@ struct FastPassBuffers {
   std::vector<std::int64_t> prefix;      // per range: running sums along a row
   std::vector<std::uint8_t> skyLike, sky, nearSkyRow, nearAny;
   std::vector<std::size_t> stack;
-  // reproject: the points of each sampled row.
+  // depthImage and reproject: z of each x16 disparity; reproject: the points of each sampled row.
+  DepthTable depthTable;
   std::vector<int> rowPoints;
   std::vector<std::size_t> removedPerRange;
 };
@@ -54,7 +56,7 @@ void confidenceOfValidPixels(ImageView<std::int16_t> disparity, ImageView<const 
 
 /// geometry::depthImage's result and checks; `depth` is resized (kept when the size is the same).
 void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth, Image<float>& depth,
-                int threads);
+                FastPassBuffers& buffers, int threads);
 
 /// geometry::reproject's result and checks, written into `cloud` (whose vectors keep their
 /// capacity between frames).
