@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -150,6 +151,83 @@ TEST(Projection, RelativeGapScalesWithDisparity) {
   const auto at = [&](double d, int v) { return lidarPointAt(c, 60, v, 50.0 / d); };
   EXPECT_EQ(project({at(40.0, 30), at(44.0, 34)}, c, o).stats.occluded, 0u);
   EXPECT_EQ(project({at(40.0, 30), at(45.0, 34)}, c, o).stats.occluded, 1u);
+}
+
+namespace {
+
+// The occlusion filter's definition, pixel by pixel: whether a nearer point (x16 disparity above
+// `limit16`) lies in the rectangle [x0, x1] x [y0, y1], clipped to the image.
+bool nearerInByDefinition(const std::vector<std::vector<int>>& nearest, int x0, int x1, int y0, int y1, int limit16) {
+  const int height = static_cast<int>(nearest.size());
+  const int width = static_cast<int>(nearest[0].size());
+  for (int y = std::max(y0, 0); y <= std::min(y1, height - 1); ++y) {
+    for (int x = std::max(x0, 0); x <= std::min(x1, width - 1); ++x) {
+      if (nearest[y][x] > limit16) return true;
+    }
+  }
+  return false;
+}
+
+// The source indices project() should keep: each unfiltered sample tested against every pixel
+// of its windows (OcclusionFilter's documentation).
+std::vector<std::size_t> keptByDefinition(const ProjectedLidar& all, const lidar_sgm::geometry::OcclusionFilter& f) {
+  std::vector<std::vector<int>> nearest(all.height, std::vector<int>(all.width, kInvalidDisparity));
+  for (const auto& s : all.samples) nearest[s.y][s.x] = std::max(nearest[s.y][s.x], s.disparity16);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < all.samples.size(); ++i) {
+    const auto& s = all.samples[i];
+    const double gap = std::max(f.minGap, f.relativeGap * s.disparity16 / lidar_sgm::kDisparityScale);
+    const int limit = s.disparity16 + static_cast<int>(std::floor(gap * lidar_sgm::kDisparityScale));
+    const int x = s.x;
+    const int y = s.y;
+    const int hw = f.halfWidth;
+    const int hh = f.halfHeight;
+    bool occluded = nearest[y][x] > limit;
+    if (!occluded && !f.requireEnclosed) occluded = nearerInByDefinition(nearest, x - hw, x + hw, y - hh, y + hh, limit);
+    if (!occluded && f.requireEnclosed) {
+      occluded = (nearerInByDefinition(nearest, x - hw, x + hw, y - hh, y - 1, limit) &&
+                  nearerInByDefinition(nearest, x - hw, x + hw, y + 1, y + hh, limit)) ||
+                 (nearerInByDefinition(nearest, x - hw, x - 1, y - hh, y + hh, limit) &&
+                  nearerInByDefinition(nearest, x + 1, x + hw, y - hh, y + hh, limit));
+    }
+    if (!occluded) kept.push_back(all.sourceIndex[i]);
+  }
+  return kept;
+}
+
+}  // namespace
+
+TEST(Projection, OcclusionFilterKeepsExactlyWhatItsWindowsDefine) {
+  // Random scenes of near and far points on beam-like rows and scattered pixels, at the image's
+  // edges too, through every window shape: project() must keep exactly the points the windows,
+  // read pixel by pixel, leave visible.
+  const StereoCalibration c = smallRig();
+  std::mt19937 engine(7);
+  for (int scene = 0; scene < 40; ++scene) {
+    std::vector<Eigen::Vector3f> points;
+    const int rowStep = 1 + scene % 5;
+    for (int i = 0; i < 900; ++i) {
+      const int u = static_cast<int>(engine() % 101u);
+      const int v = scene % 2 == 0 ? static_cast<int>(engine() % 61u) : static_cast<int>(engine() % 61u) / rowStep * rowStep;
+      const double z = engine() % 3u == 0 ? 2.0 + static_cast<int>(engine() % 100u) * 0.01 : 6.0 + static_cast<int>(engine() % 2000u) * 0.01;
+      points.push_back(lidarPointAt(c, u, v, z));
+    }
+    const ProjectedLidar all = project(points, c, withoutOcclusionFilter());
+    for (const int hw : {0, 1, 2, 7}) {
+      for (const int hh : {0, 1, 4, 9}) {
+        for (const bool enclosed : {true, false}) {
+          ProjectionOptions o;
+          o.occlusion.halfWidth = hw;
+          o.occlusion.halfHeight = hh;
+          o.occlusion.requireEnclosed = enclosed;
+          const ProjectedLidar p = project(points, c, o);
+          ASSERT_EQ(p.sourceIndex, keptByDefinition(all, o.occlusion))
+              << "scene " << scene << ", window +-" << hw << " x +-" << hh << (enclosed ? ", enclosed" : "");
+          EXPECT_EQ(p.stats.occluded + p.samples.size(), all.samples.size());
+        }
+      }
+    }
+  }
 }
 
 TEST(Projection, RejectsBadOptionsAndCalibration) {
