@@ -37,23 +37,37 @@ GrayImageView downscaleHalf(const GrayImageView& in, Image<std::uint8_t>& buffer
   return GrayImageView(std::as_const(buffer16).view());
 }
 
-LidarPoints halveLidarPoints(const LidarPoints& points) {
-  std::vector<LidarSample> samples;
-  samples.reserve(points.size());
-  for (int y = 0; y < points.height(); ++y) {
-    for (int x = 0; x < points.width(); ++x) {
-      for (const int* d = points.begin(x, y); d != points.end(x, y); ++d) {
-        samples.push_back({x / 2, y / 2, (*d + 1) / 2});
-      }
-    }
+void halveLidarPoints(const LidarPoints& points, std::vector<LidarSample>& samples, LidarPoints& half) {
+  // The points in their stored order (ascending pixel, then as given): the order of a walk over
+  // the pixels, without reading the offsets of the many pixels that hold none.
+  const std::vector<int>& pixels = points.pointPixels();
+  const std::vector<int>& disparities = points.disparities16();
+  const int width = points.width();
+  samples.resize(pixels.size());
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    const int x = pixels[i] % width;
+    const int y = pixels[i] / width;
+    samples[i] = {x / 2, y / 2, (disparities[i] + 1) / 2};
   }
-  return LidarPoints(halfSize(points.width()), halfSize(points.height()), samples);
+  half.assign(halfSize(points.width()), halfSize(points.height()), samples);
 }
 
+LidarPoints halveLidarPoints(const LidarPoints& points) {
+  std::vector<LidarSample> samples;
+  LidarPoints half;
+  halveLidarPoints(points, samples, half);
+  return half;
+}
+
+// Rows 2k and 2k + 1 of `full` are the same: each half row is widened once and copied once.
 void upscaleDisparity(ImageView<const std::int16_t> half, ImageView<std::int16_t> full) {
   for (int y = 0; y < full.height; ++y) {
-    const std::int16_t* src = half.row(y / 2);
     std::int16_t* dst = full.row(y);
+    if (y % 2 == 1) {
+      std::copy(full.row(y - 1), full.row(y - 1) + full.width, dst);
+      continue;
+    }
+    const std::int16_t* src = half.row(y / 2);
     for (int x = 0; x < full.width; ++x) {
       const std::int16_t d = src[x / 2];
       dst[x] = d == kInvalidDisparity ? kInvalidDisparity : static_cast<std::int16_t>(2 * d);
@@ -63,7 +77,13 @@ void upscaleDisparity(ImageView<const std::int16_t> half, ImageView<std::int16_t
 
 void upscaleMask(ImageView<const std::uint8_t> half, ImageView<std::uint8_t> full) {
   for (int y = 0; y < full.height; ++y) {
-    for (int x = 0; x < full.width; ++x) full(x, y) = half(x / 2, y / 2);
+    std::uint8_t* dst = full.row(y);
+    if (y % 2 == 1) {
+      std::copy(full.row(y - 1), full.row(y - 1) + full.width, dst);
+      continue;
+    }
+    const std::uint8_t* src = half.row(y / 2);
+    for (int x = 0; x < full.width; ++x) dst[x] = src[x / 2];
   }
 }
 

@@ -3,6 +3,7 @@
 // Integer arithmetic only, in the core, so every backend sees the same half-scale inputs.
 
 #include <cstdint>
+#include <vector>
 
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
@@ -23,6 +24,8 @@ GrayImageView downscaleHalf(const GrayImageView& in, Image<std::uint8_t>& buffer
 /// Every point moves to pixel (x/2, y/2) with its disparity halved, rounded half up (x16), so at
 /// least 1/16 px: a point stays in front of the camera.
 LidarPoints halveLidarPoints(const LidarPoints& points);
+/// The same into `half`, with `samples` as scratch: both keep their memory between frames.
+void halveLidarPoints(const LidarPoints& points, std::vector<LidarSample>& samples, LidarPoints& half);
 
 /// full(x, y) = 2 * half(x/2, y/2), kInvalidDisparity staying invalid.
 void upscaleDisparity(ImageView<const std::int16_t> half, ImageView<std::int16_t> full);

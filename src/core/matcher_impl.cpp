@@ -56,12 +56,12 @@ void Matcher::Impl::runAtHalfScale(const FramePlan& plan, const GrayImageView& l
   const GrayImageView halfLeft = downscaleHalf(left, half8[0], half16[0]);
   const GrayImageView halfRight = downscaleHalf(right, half8[1], half16[1]);
   const GrayImageView halfUp = downscaleHalf(vertical.up, half8[2], half16[2]);
-  LidarPoints halfLidar;
-  if (lidar != nullptr && !lidar->empty()) halfLidar = halveLidarPoints(*lidar);
+  const bool halfWithLidar = lidar != nullptr && !lidar->empty();
+  if (halfWithLidar) halveLidarPoints(*lidar, halfSamples, halfLidar);
   halfDisparity.resize(plan.width, plan.height);
   rescaleMs = msSince(start);
 
-  runBackend(plan, planned(plan, halfLeft, halfRight, halfUp, halfLidar.empty() ? nullptr : &halfLidar),
+  runBackend(plan, planned(plan, halfLeft, halfRight, halfUp, halfWithLidar && !halfLidar.empty() ? &halfLidar : nullptr),
              halfDisparity.view());
 
   start = std::chrono::steady_clock::now();

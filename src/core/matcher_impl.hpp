@@ -43,6 +43,8 @@ struct Matcher::Impl {
   Image<std::int16_t> halfDisparity;
   Image<std::uint8_t> halfSupport;
   Image<std::uint8_t> halfConfidence;
+  std::vector<LidarSample> halfSamples;  // the halved points, kept between frames
+  LidarPoints halfLidar;
 };
 
 }  // namespace lidar_sgm
