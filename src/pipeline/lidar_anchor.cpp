@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+
+#include "pipeline/lidar_anchor_rows.hpp"
 
 namespace lidar_sgm {
 namespace {
@@ -31,71 +34,91 @@ void validate(const LidarAnchorOptions& o) {
   if (!(o.surfaceGap >= 0.0 && o.surfaceGap <= 8.0)) fail("surfaceGap must be in [0, 8] px");
 }
 
-std::size_t anchorToLidar(ImageView<std::int16_t> disparity, const std::vector<LidarSample>& samples,
-                          const LidarAnchorOptions& o, LidarAnchorBuffers& buffers) {
+bool AnchorPlan::anchors(ImageView<const std::int16_t> disparity, const LidarSample& s, int& residual, int& dq) const {
+  if (s.x < 0 || s.y < 0 || s.x >= disparity.width || s.y >= disparity.height) return false;
+  dq = disparity(s.x, s.y);
+  // A point on a near surface reaches no far pixel of its own surface (|d(q) - d(p)| <= gap).
+  if (!isValid(dq) || dq > maxD + gap) return false;
+  residual = s.disparity16 - dq;
+  return std::abs(residual) <= agreement;
+}
+
+bool planAnchoring(ImageView<const std::int16_t> disparity, const std::vector<LidarSample>& samples,
+                   const LidarAnchorOptions& o, AnchorPlan& plan, LidarAnchorBuffers& buffers) {
   validate(o);
-  if (!o.enabled || samples.empty() || disparity.empty() || o.maxDisparity <= 0.0) return 0;
-  const int w = disparity.width;
-  const int h = disparity.height;
-  const int maxD = x16(o.maxDisparity);
-  const int agreement = x16(o.agreement);
-  const int gap = x16(o.surfaceGap);
+  if (!o.enabled || samples.empty() || disparity.empty() || o.maxDisparity <= 0.0) return false;
+  plan.options = o;
+  plan.maxD = x16(o.maxDisparity);
+  plan.agreement = x16(o.agreement);
+  plan.gap = x16(o.surfaceGap);
   const int kw = 2 * o.halfWidth + 1;
   // Weights in 1/1024, 64-bit sums: any number of points may share a window.
-  std::vector<int> weights(static_cast<std::size_t>(kw) * (2 * o.halfHeight + 1));
+  plan.weights.resize(static_cast<std::size_t>(kw) * (2 * o.halfHeight + 1));
   for (int dy = -o.halfHeight; dy <= o.halfHeight; ++dy) {
     for (int dx = -o.halfWidth; dx <= o.halfWidth; ++dx) {
-      weights[static_cast<std::size_t>(dy + o.halfHeight) * kw + dx + o.halfWidth] =
+      plan.weights[static_cast<std::size_t>(dy + o.halfHeight) * kw + dx + o.halfWidth] =
           static_cast<int>(std::lround(1024.0 * std::exp(-(dx * dx + dy * dy) / (2.0 * o.sigma * o.sigma))));
     }
   }
   // Only the rows within reach of a point that can anchor anything are cleared and read.
-  const auto anchors = [&](const LidarSample& s, int& residual, int& dq) {
-    if (s.x < 0 || s.y < 0 || s.x >= w || s.y >= h) return false;
-    dq = disparity(s.x, s.y);
-    // A point on a near surface reaches no far pixel of its own surface (|d(q) - d(p)| <= gap).
-    if (!isValid(dq) || dq > maxD + gap) return false;
-    residual = s.disparity16 - dq;
-    return std::abs(residual) <= agreement;
-  };
-  int firstRow = h;
-  int lastRow = -1;
+  plan.firstRow = disparity.height;
+  plan.lastRow = -1;
   for (const LidarSample& s : samples) {
     int residual = 0;
     int dq = 0;
-    if (!anchors(s, residual, dq)) continue;
-    firstRow = std::min(firstRow, std::max(0, s.y - o.halfHeight));
-    lastRow = std::max(lastRow, std::min(h - 1, s.y + o.halfHeight));
+    if (!plan.anchors(disparity, s, residual, dq)) continue;
+    plan.firstRow = std::min(plan.firstRow, std::max(0, s.y - o.halfHeight));
+    plan.lastRow = std::max(plan.lastRow, std::min(disparity.height - 1, s.y + o.halfHeight));
   }
-  if (lastRow < firstRow) return 0;
-  // The sums cover rows firstRow .. lastRow only.
-  const std::size_t pixels = static_cast<std::size_t>(lastRow - firstRow + 1) * w;
-  buffers.weightedResidual.assign(pixels, 0);
-  buffers.weight.assign(pixels, 0);
+  if (plan.lastRow < plan.firstRow) return false;
+  // The sums cover rows firstRow .. lastRow only; each caller of accumulateAnchors clears its rows.
+  const std::size_t pixels = static_cast<std::size_t>(plan.lastRow - plan.firstRow + 1) * disparity.width;
+  buffers.weightedResidual.resize(pixels);
+  buffers.weight.resize(pixels);
+  return true;
+}
+
+void accumulateAnchors(ImageView<const std::int16_t> disparity, const std::vector<LidarSample>& samples,
+                       const AnchorPlan& plan, int y0, int y1, LidarAnchorBuffers& buffers) {
+  const LidarAnchorOptions& o = plan.options;
+  const int w = disparity.width;
+  const int kw = 2 * o.halfWidth + 1;
+  const std::size_t begin = static_cast<std::size_t>(y0 - plan.firstRow) * w;
+  const std::size_t end = static_cast<std::size_t>(y1 - plan.firstRow) * w;
+  std::fill(buffers.weightedResidual.begin() + static_cast<std::ptrdiff_t>(begin),
+            buffers.weightedResidual.begin() + static_cast<std::ptrdiff_t>(end), 0);
+  std::fill(buffers.weight.begin() + static_cast<std::ptrdiff_t>(begin),
+            buffers.weight.begin() + static_cast<std::ptrdiff_t>(end), 0);
   for (const LidarSample& s : samples) {
+    if (s.y + o.halfHeight < y0 || s.y - o.halfHeight >= y1) continue;  // its window misses the rows
     int r = 0;
     int dq = 0;
-    if (!anchors(s, r, dq)) continue;
+    if (!plan.anchors(disparity, s, r, dq)) continue;
     const int x0 = std::max(0, s.x - o.halfWidth);
     const int x1 = std::min(w - 1, s.x + o.halfWidth);
-    for (int y = std::max(0, s.y - o.halfHeight); y <= std::min(h - 1, s.y + o.halfHeight); ++y) {
-      const int* weightRow = weights.data() + static_cast<std::size_t>(y - s.y + o.halfHeight) * kw;
+    for (int y = std::max(y0, s.y - o.halfHeight); y <= std::min(y1 - 1, s.y + o.halfHeight); ++y) {
+      const int* weightRow = plan.weights.data() + static_cast<std::size_t>(y - s.y + o.halfHeight) * kw;
       const std::int16_t* row = &disparity(0, y);
-      std::int64_t* sumRow = buffers.weightedResidual.data() + static_cast<std::size_t>(y - firstRow) * w;
-      std::int64_t* weightSumRow = buffers.weight.data() + static_cast<std::size_t>(y - firstRow) * w;
+      std::int64_t* sumRow = buffers.weightedResidual.data() + static_cast<std::size_t>(y - plan.firstRow) * w;
+      std::int64_t* weightSumRow = buffers.weight.data() + static_cast<std::size_t>(y - plan.firstRow) * w;
       for (int x = x0; x <= x1; ++x) {
         const int dp = row[x];
-        if (!isValid(dp) || dp > maxD || std::abs(dp - dq) > gap) continue;
+        if (!isValid(dp) || dp > plan.maxD || std::abs(dp - dq) > plan.gap) continue;
         const int weight = weightRow[x - s.x + o.halfWidth];
         sumRow[x] += weight * r;
         weightSumRow[x] += weight;
       }
     }
   }
+}
+
+std::size_t correctAnchored(ImageView<std::int16_t> disparity, const AnchorPlan& plan, int y0, int y1,
+                            const LidarAnchorBuffers& buffers) {
+  const int w = disparity.width;
   std::size_t moved = 0;
-  for (int y = firstRow; y <= lastRow; ++y) {
+  for (int y = y0; y < y1; ++y) {
     for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y - firstRow) * w + x;
+      const std::size_t i = static_cast<std::size_t>(y - plan.firstRow) * w + x;
       if (buffers.weight[i] == 0) continue;
       const int correction = roundedQuotient(buffers.weightedResidual[i], buffers.weight[i]);
       const int d = disparity(x, y) + correction;
@@ -105,6 +128,14 @@ std::size_t anchorToLidar(ImageView<std::int16_t> disparity, const std::vector<L
     }
   }
   return moved;
+}
+
+std::size_t anchorToLidar(ImageView<std::int16_t> disparity, const std::vector<LidarSample>& samples,
+                          const LidarAnchorOptions& o, LidarAnchorBuffers& buffers) {
+  AnchorPlan plan;
+  if (!planAnchoring(disparity, samples, o, plan, buffers)) return 0;
+  accumulateAnchors(disparity, samples, plan, plan.firstRow, plan.lastRow + 1, buffers);
+  return correctAnchored(disparity, plan, plan.firstRow, plan.lastRow + 1, buffers);
 }
 
 }  // namespace lidar_sgm

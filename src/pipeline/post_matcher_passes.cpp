@@ -70,6 +70,15 @@ void PostMatcherPasses::confidenceOfValidPixels(ImageView<std::int16_t> disparit
   if (minConfidence > 0.0) applyMinConfidence(disparity, confidence.view(), minConfidence);
 }
 
+std::size_t PostMatcherPasses::anchorToLidar(ImageView<std::int16_t> disparity16,
+                                             const std::vector<LidarSample>& samples,
+                                             const LidarAnchorOptions& options, LidarAnchorBuffers& buffers) {
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  if (fast_) return fast::anchorToLidar(disparity16, samples, options, buffers, threads_);
+#endif
+  return lidar_sgm::anchorToLidar(disparity16, samples, options, buffers);
+}
+
 void PostMatcherPasses::reproject(ImageView<const std::int16_t> disparity16,
                                   const geometry::StereoCalibration& calibration,
                                   const geometry::ReprojectionOptions& options, Image<float>& depth,

@@ -1,8 +1,8 @@
 #pragma once
-// The Densifier's passes after the matcher (output filters, confidence, minimum confidence, depth
-// and cloud), each run as its specification's loops (sky_mask.cpp, outlier_filter.cpp,
-// min_confidence.cpp, geometry/reprojection.cpp) or as the fast passes (fast/fast_passes.hpp),
-// which give the same bytes. Which: the fast ones with every backend but cpu_ref, where they are
+// The Densifier's passes after the matcher (output filters, the LiDAR anchor, confidence, minimum
+// confidence, depth and cloud), each run as its specification's loops (sky_mask.cpp,
+// outlier_filter.cpp, lidar_anchor.cpp, min_confidence.cpp, geometry/reprojection.cpp) or as the
+// fast passes (fast/fast_passes.hpp), which give the same bytes. Which: the fast ones with every backend but cpu_ref, where they are
 // built (with the fast cpu backend); cpu_ref runs the specification end to end.
 
 #include <cstdint>
@@ -13,6 +13,7 @@
 #include "lidar_sgm/core/lidar_points.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
 
 namespace lidar_sgm {
@@ -44,6 +45,9 @@ class PostMatcherPasses {
   /// pixels below it lose both (applyMinConfidence).
   void confidenceOfValidPixels(ImageView<std::int16_t> disparity, ImageView<const std::uint8_t> matched,
                                double minConfidence, Image<std::uint8_t>& confidence);
+  /// anchorToLidar (lidar_anchor.hpp); `buffers` are kept between frames by the caller.
+  std::size_t anchorToLidar(ImageView<std::int16_t> disparity16, const std::vector<LidarSample>& samples,
+                            const LidarAnchorOptions& options, LidarAnchorBuffers& buffers);
   /// geometry::depthImage and geometry::reproject; `cloud` keeps its capacity on the fast path.
   void reproject(ImageView<const std::int16_t> disparity16, const geometry::StereoCalibration& calibration,
                  const geometry::ReprojectionOptions& options, Image<float>& depth, geometry::DenseCloud& cloud);

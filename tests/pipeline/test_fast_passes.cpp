@@ -18,6 +18,7 @@
 
 #include "lidar_sgm/geometry/reprojection.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
+#include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "lidar_sgm/pipeline/outlier_filter.hpp"
 #include "lidar_sgm/pipeline/sky_mask.hpp"
@@ -263,6 +264,37 @@ geometry::StereoCalibration calibrationOf(Size s) {
     }
   }
   return ::testing::AssertionSuccess();
+}
+
+TEST_P(FastPasses, LidarAnchorIsTheSpecifications) {
+  std::mt19937 engine(23);
+  LidarAnchorBuffers specBuffers;
+  LidarAnchorBuffers fastBuffers;  // one for every case: kept between calls as the Densifier keeps it
+  for (const Size s : kSizes) {
+    const Padded<std::int16_t> matched = disparityOf(s, 7, engine);
+    // Points near the matched disparity (most agree, some do not), some off the image.
+    std::vector<LidarSample> samples;
+    for (int y = 0; y < s.height; y += 2) {
+      for (int x = -1; x <= s.width; ++x) {
+        const bool inside = x >= 0 && x < s.width;
+        const int base = inside && matched.view()(x, y) > 0 ? matched.view()(x, y) : 200;
+        samples.push_back({x, y, std::max(1, base + static_cast<int>(engine() % 41u) - 20)});
+      }
+    }
+    LidarAnchorOptions wide;
+    wide.maxDisparity = 300.0;  // every valid pixel of disparityOf's patches is far
+    LidarAnchorOptions flat = wide;
+    flat.halfHeight = 0;
+    flat.surfaceGap = 8.0;
+    for (const LidarAnchorOptions& o : {LidarAnchorOptions{}, wide, flat}) {
+      Padded<std::int16_t> expected = matched;
+      Padded<std::int16_t> actual = matched;
+      const std::size_t expectedMoved = anchorToLidar(expected.view(), samples, o, specBuffers);
+      const std::size_t actualMoved = fast::anchorToLidar(actual.view(), samples, o, fastBuffers, threads());
+      ASSERT_TRUE(samePixels(expected.view(), std::as_const(actual).view())) << s.width << "x" << s.height;
+      EXPECT_EQ(actualMoved, expectedMoved);
+    }
+  }
 }
 
 TEST_P(FastPasses, DepthAndCloudAreTheSpecifications) {

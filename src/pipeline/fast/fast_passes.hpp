@@ -3,7 +3,7 @@
 // time) and split among threads by fixed row ranges. Each function has the name and the result
 // of its specification, bit for bit and for any thread count: removeSky (sky_mask.cpp),
 // removeOutliers (outlier_filter.cpp), the Densifier's confidence of the valid pixels and
-// applyMinConfidence (min_confidence.cpp), geometry::depthImage and geometry::reproject
+// applyMinConfidence (min_confidence.cpp), anchorToLidar (lidar_anchor.cpp), geometry::depthImage and geometry::reproject
 // (reprojection.cpp). Their buffers live in FastPassBuffers, kept between frames: after the first
 // frame of a size nothing is allocated. Compiled with the fast cpu backend (Highway).
 
@@ -15,6 +15,7 @@
 #include "lidar_sgm/core/lidar_points.hpp"
 #include "lidar_sgm/core/matcher.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/outlier_filter.hpp"
 #include "lidar_sgm/pipeline/sky_mask.hpp"
 #include "pipeline/fast/depth_table.hpp"
@@ -53,6 +54,10 @@ std::size_t removeOutliers(ImageView<std::int16_t> disparity16, const OutlierFil
 /// confidence, minConfidence) (min_confidence.hpp), with its checks. Same sizes required.
 void confidenceOfValidPixels(ImageView<std::int16_t> disparity, ImageView<const std::uint8_t> matched,
                              ImageView<std::uint8_t> confidence, double minConfidence, int threads);
+
+/// anchorToLidar's result and checks (lidar_anchor.hpp).
+std::size_t anchorToLidar(ImageView<std::int16_t> disparity16, const std::vector<LidarSample>& samples,
+                          const LidarAnchorOptions& options, LidarAnchorBuffers& buffers, int threads);
 
 /// geometry::depthImage's result and checks; `depth` is resized (kept when the size is the same).
 void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth, Image<float>& depth,
