@@ -127,8 +127,9 @@ HWY_INLINE void CompareExchange(VI16& a, VI16& b) {
   a = lo;
 }
 
-// SelectValidMedian<25> through the pruned merge sort network kSort25: the same lower median of
-// the valid values per lane, for the windows of the 5x5 filter that hold an invalid pixel.
+// The 25 values sorted by the pruned merge sort network kSort25, then per lane the lower median
+// of the valid values (as SelectValidMedian, with 140 comparators instead of 300), for the windows
+// of the 5x5 filter that hold an invalid pixel.
 HWY_INLINE VI16 SortValidMedian25(VI16* v, VI16 invalidCount) {
   for (const Comparator& c : kSort25) CompareExchange(v[c.a], v[c.b]);
   return PickValidMedian<25>(v, invalidCount);
@@ -221,6 +222,7 @@ void Median5RowInside(ImageView<const std::int16_t> in, int y, std::int16_t* col
   for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
 }
 
+// The 3x3 filter's row (the 5x5 filter has Median5RowInside and the scalar rule at its edges).
 template <int size>
 void MedianRowSized(ImageView<const std::int16_t> in, int y, std::int16_t* out) {
   constexpr int radius = size / 2;
@@ -259,7 +261,9 @@ void MedianRowImpl(ImageView<const std::int16_t> in, int size, int y, std::int16
   if (size == 5 && y >= 2 && y + 2 < in.height && in.width >= 5) {
     Median5RowInside(in, y, columns, out);
   } else if (size == 5) {
-    MedianRowSized<5>(in, y, out);
+    // The two rows at each edge, and images narrower than the window: narrower than any vector
+    // too, so pixel by pixel.
+    for (int x = 0; x < in.width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
   } else if (size == 3) {
     MedianRowSized<3>(in, y, out);
   } else {
