@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -31,47 +32,31 @@ Image<std::int16_t> nearestPerPixel(int width, int height, const std::vector<Can
   return nearest;
 }
 
-/// The occlusion window read one value per row instead of one per pixel: for each row of
-/// `nearest` that holds a point, the largest x16 disparity over the halfWidth pixels left of each
-/// pixel and over those right of it (kInvalidDisparity where none, or past the image's edge). A
-/// KITTI frame's ~25,000 candidates each read 4 windows of 5 x 9 pixels otherwise.
-class WindowMaxima {
+/// The occlusion windows read on the rows that hold a point only: between a scan's lines (3-6 rows
+/// apart on KITTI's images, OcclusionFilter::halfHeight) whole rows of a window hold none.
+class OccupiedRows {
  public:
-  WindowMaxima(const Image<std::int16_t>& nearest, int halfWidth) : nearest_(nearest) {
-    const int width = nearest.width();
-    slot_.assign(static_cast<std::size_t>(nearest.height()), -1);
-    int rows = 0;
+  explicit OccupiedRows(const Image<std::int16_t>& nearest) : nearest_(nearest) {
+    occupied_.resize(static_cast<std::size_t>(nearest.height()));
     for (int y = 0; y < nearest.height(); ++y) {
       const std::int16_t* row = &nearest(0, y);
-      if (std::any_of(row, row + width, [](std::int16_t d) { return d != kInvalidDisparity; })) slot_[y] = rows++;
-    }
-    left_.assign(static_cast<std::size_t>(rows) * width, kInvalidDisparity);
-    right_.assign(left_.size(), kInvalidDisparity);
-    for (int y = 0; y < nearest.height(); ++y) {
-      if (slot_[y] < 0) continue;
-      const std::int16_t* row = &nearest(0, y);
-      std::int16_t* left = left_.data() + static_cast<std::size_t>(slot_[y]) * width;
-      std::int16_t* right = right_.data() + static_cast<std::size_t>(slot_[y]) * width;
-      // One shift at a time: each loop is a contiguous maximum the compiler vectorises.
-      for (int k = 1; k <= halfWidth && k < width; ++k) {
-        for (int x = k; x < width; ++x) left[x] = std::max(left[x], row[x - k]);
-        for (int x = 0; x + k < width; ++x) right[x] = std::max(right[x], row[x + k]);
-      }
+      occupied_[static_cast<std::size_t>(y)] =
+          std::any_of(row, row + nearest.width(), [](std::int16_t d) { return d != kInvalidDisparity; }) ? 1 : 0;
     }
   }
 
-  /// Whether a point nearer than `limit16` lies in rows [y0, y1] (clipped to the image), in the
-  /// columns left of x (`left`), at x (`centre`) and right of x (`right`) within halfWidth.
-  bool nearerIn(int x, int y0, int y1, bool left, bool centre, bool right, int limit16) const {
-    const int width = nearest_.width();
+  /// Whether a point nearer than `limit16` lies in the rectangle [x0, x1] x [y0, y1] (clipped to
+  /// the image).
+  bool nearerIn(int x0, int x1, int y0, int y1, int limit16) const {
+    x0 = std::max(x0, 0);
     y0 = std::max(y0, 0);
+    x1 = std::min(x1, nearest_.width() - 1);
     y1 = std::min(y1, nearest_.height() - 1);
     for (int y = y0; y <= y1; ++y) {
-      const int s = slot_[static_cast<std::size_t>(y)];
-      if (s < 0) continue;  // no point in the row
-      const std::size_t at = static_cast<std::size_t>(s) * width + x;
-      if ((left && left_[at] > limit16) || (centre && nearest_(x, y) > limit16) || (right && right_[at] > limit16)) {
-        return true;
+      if (occupied_[static_cast<std::size_t>(y)] == 0) continue;
+      const std::int16_t* row = &nearest_(0, y);
+      for (int x = x0; x <= x1; ++x) {
+        if (row[x] > limit16) return true;
       }
     }
     return false;
@@ -79,26 +64,28 @@ class WindowMaxima {
 
  private:
   const Image<std::int16_t>& nearest_;
-  std::vector<int> slot_;  // per image row: its row in left_ and right_, -1 when it holds no point
-  std::vector<std::int16_t> left_, right_;
+  std::vector<std::uint8_t> occupied_;  // per image row: whether any point projects into it
 };
 
 /// The occlusion test of OcclusionFilter for one candidate: a nearer point (by more than the gap)
 /// in the window of halfWidth x halfHeight pixels around it.
-bool isOccluded(const Image<std::int16_t>& nearest, const WindowMaxima& maxima, const Candidate& c,
+bool isOccluded(const Image<std::int16_t>& nearest, const OccupiedRows& rows, const Candidate& c,
                 const OcclusionFilter& f) {
   const double gap = std::max(f.minGap, f.relativeGap * c.disparity16 / kDisparityScale);
   const int limit16 = c.disparity16 + static_cast<int>(std::floor(gap * kDisparityScale));
   if (nearest(c.x, c.y) > limit16) return true;  // a nearer point in the very same pixel
+  const int hw = f.halfWidth;
   const int hh = f.halfHeight;
-  if (!f.requireEnclosed) return maxima.nearerIn(c.x, c.y - hh, c.y + hh, true, true, true, limit16);
+  if (!f.requireEnclosed) return rows.nearerIn(c.x - hw, c.x + hw, c.y - hh, c.y + hh, limit16);
   // Enclosed: nearer points on both sides, above and below or left and right. A hidden point
   // projects inside the foreground's silhouette; a visible background point next to a
   // foreground edge has the foreground on one side only.
-  const bool above = maxima.nearerIn(c.x, c.y - hh, c.y - 1, true, true, true, limit16);
-  if (above && maxima.nearerIn(c.x, c.y + 1, c.y + hh, true, true, true, limit16)) return true;
-  return maxima.nearerIn(c.x, c.y - hh, c.y + hh, true, false, false, limit16) &&
-         maxima.nearerIn(c.x, c.y - hh, c.y + hh, false, false, true, limit16);
+  if (rows.nearerIn(c.x - hw, c.x + hw, c.y - hh, c.y - 1, limit16) &&
+      rows.nearerIn(c.x - hw, c.x + hw, c.y + 1, c.y + hh, limit16)) {
+    return true;
+  }
+  return rows.nearerIn(c.x - hw, c.x - 1, c.y - hh, c.y + hh, limit16) &&
+         rows.nearerIn(c.x + 1, c.x + hw, c.y - hh, c.y + hh, limit16);
 }
 
 }  // namespace
@@ -182,11 +169,11 @@ ProjectedLidar project(const std::vector<Eigen::Vector3f>& pointsLidar, const St
   const bool filtered = filter.enabled && !candidates.empty();
   Image<std::int16_t> nearest;
   if (filtered) nearest = nearestPerPixel(out.width, out.height, candidates);
-  const WindowMaxima maxima(nearest, filtered ? filter.halfWidth : 0);
+  const OccupiedRows rows(nearest);
   out.samples.reserve(candidates.size());
   out.sourceIndex.reserve(candidates.size());
   for (const Candidate& c : candidates) {
-    if (filtered && isOccluded(nearest, maxima, c, filter)) {
+    if (filtered && isOccluded(nearest, rows, c, filter)) {
       ++out.stats.occluded;
       continue;
     }
