@@ -61,7 +61,7 @@ void Matcher::Impl::runAtHalfScale(const FramePlan& plan, const GrayImageView& l
   halfDisparity.resize(plan.width, plan.height);
   rescaleMs = msSince(start);
 
-  runBackend(plan, planned(plan, halfLeft, halfRight, halfUp, halfWithLidar && !halfLidar.empty() ? &halfLidar : nullptr),
+  runBackend(plan, planned(plan, halfLeft, halfRight, halfUp, halfWithLidar ? &halfLidar : nullptr),
              halfDisparity.view());
 
   start = std::chrono::steady_clock::now();

@@ -229,9 +229,9 @@ void Densifier::match(const LidarPoints* lidar) {
   filterStats_ = useLidar ? passes_->applyOutputFilters(disparity_.view(), projected_.samples, left, config_.filters)
                           : OutputFilterStats{};
   // The far scene's sub-pixel disparity from the points left in the matching (lidar_anchor.hpp).
-  filterStats_.anchored = useLidar ? passes_->anchorToLidar(disparity_.view(), hidden + inconsistent > 0 ? keptSamples_ : projected_.samples,
-                                                   config_.lidarAnchor, anchorBuffers_)
-                                   : 0;
+  const std::vector<LidarSample>& anchorSamples = hidden + inconsistent > 0 ? keptSamples_ : projected_.samples;
+  filterStats_.anchored =
+      useLidar ? passes_->anchorToLidar(disparity_.view(), anchorSamples, config_.lidarAnchor, anchorBuffers_) : 0;
   filterStats_.inconsistentLidar = inconsistent;
   filterStats_.hiddenLidar = hidden;
   // The matcher's confidence, 0 where a later step removed the disparity; then the threshold.

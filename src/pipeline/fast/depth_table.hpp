@@ -1,9 +1,9 @@
 #pragma once
 // Eq. 3 backwards, z = f * b / d, once per value of the x16 disparity instead of once per pixel:
-// the reprojection divided three or four times per pixel (the depth image, the count of each
-// row's points, then z, x and y of each point), and a division is the slowest arithmetic there
-// is. The table holds the very quotient the specification computes (reprojection.cpp), so the
-// depths it gives are the same doubles.
+// the fast reprojection divided five times per pixel that gives a point (z for the depth image,
+// again to count the row's points, then z, x and y of the point), and a double division costs
+// several multiplications. The table holds the very quotient the specification computes
+// (reprojection.cpp), so the depths it gives are the same doubles; x and y keep their divisions.
 
 #include <cstdint>
 #include <vector>

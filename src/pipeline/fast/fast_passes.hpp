@@ -1,10 +1,10 @@
 #pragma once
-// The passes after the matcher, fast: vectorised (Highway, the instruction set chosen at run
-// time) and split among threads by fixed row ranges. Each function has the name and the result
-// of its specification, bit for bit and for any thread count: removeSky (sky_mask.cpp),
-// removeOutliers (outlier_filter.cpp), the Densifier's confidence of the valid pixels and
-// applyMinConfidence (min_confidence.cpp), anchorToLidar (lidar_anchor.cpp), geometry::depthImage and geometry::reproject
-// (reprojection.cpp). Their buffers live in FastPassBuffers, kept between frames: after the first
+// The passes after the matcher, fast: vectorised where the arithmetic allows (Highway, the
+// instruction set chosen at run time) and split among threads by fixed row ranges. Each function
+// has the name and the result of its specification, bit for bit and for any thread count:
+// removeSky (sky_mask.cpp), removeOutliers (outlier_filter.cpp), the Densifier's confidence of the
+// valid pixels and applyMinConfidence (min_confidence.cpp), anchorToLidar (lidar_anchor.cpp),
+// geometry::depthImage and geometry::reproject (reprojection.cpp). Their buffers live in FastPassBuffers, kept between frames: after the first
 // frame of a size nothing is allocated. Compiled with the fast cpu backend (Highway).
 
 #include <cstddef>

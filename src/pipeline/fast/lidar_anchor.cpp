@@ -20,7 +20,8 @@ std::size_t anchorToLidar(ImageView<std::int16_t> disparity16, const std::vector
   // Every range's sums are complete before any pixel moves: the sums read the pixels.
   std::vector<std::size_t> moved(static_cast<std::size_t>(rangeCount(rows, threads)), 0);
   parallelRanges(rows, threads, [&](int t, int r0, int r1) {
-    moved[static_cast<std::size_t>(t)] = correctAnchored(disparity16, plan, plan.firstRow + r0, plan.firstRow + r1, buffers);
+    moved[static_cast<std::size_t>(t)] =
+        correctAnchored(disparity16, plan, plan.firstRow + r0, plan.firstRow + r1, buffers);
   });
   std::size_t total = 0;
   for (const std::size_t n : moved) total += n;
