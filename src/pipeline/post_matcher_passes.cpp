@@ -74,7 +74,7 @@ std::size_t PostMatcherPasses::anchorToLidar(ImageView<std::int16_t> disparity16
                                              const std::vector<LidarSample>& samples,
                                              const LidarAnchorOptions& options, LidarAnchorBuffers& buffers) {
 #ifdef LIDAR_SGM_HAVE_FAST_PASSES
-  if (fast_) return fast::anchorToLidar(disparity16, samples, options, buffers, threads_);
+  if (fast_) return fast::anchorToLidar(disparity16, samples, options, buffers, *buffers_, threads_);
 #endif
   return lidar_sgm::anchorToLidar(disparity16, samples, options, buffers);
 }

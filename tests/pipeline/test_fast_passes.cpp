@@ -270,6 +270,7 @@ TEST_P(FastPasses, LidarAnchorIsTheSpecifications) {
   std::mt19937 engine(23);
   LidarAnchorBuffers specBuffers;
   LidarAnchorBuffers fastBuffers;  // one for every case: kept between calls as the Densifier keeps it
+  fast::FastPassBuffers passBuffers;
   for (const Size s : kSizes) {
     const Padded<std::int16_t> matched = disparityOf(s, 7, engine);
     // Points near the matched disparity (most agree, some do not), some off the image.
@@ -290,7 +291,7 @@ TEST_P(FastPasses, LidarAnchorIsTheSpecifications) {
       Padded<std::int16_t> expected = matched;
       Padded<std::int16_t> actual = matched;
       const std::size_t expectedMoved = anchorToLidar(expected.view(), samples, o, specBuffers);
-      const std::size_t actualMoved = fast::anchorToLidar(actual.view(), samples, o, fastBuffers, threads());
+      const std::size_t actualMoved = fast::anchorToLidar(actual.view(), samples, o, fastBuffers, passBuffers, threads());
       ASSERT_TRUE(samePixels(expected.view(), std::as_const(actual).view())) << s.width << "x" << s.height;
       EXPECT_EQ(actualMoved, expectedMoved);
     }

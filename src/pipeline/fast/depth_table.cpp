@@ -1,5 +1,7 @@
 #include "pipeline/fast/depth_table.hpp"
 
+#include <algorithm>
+
 #include "lidar_sgm/core/image.hpp"
 
 namespace lidar_sgm {
@@ -19,18 +21,9 @@ void DepthTable::prepare(double focalBaseline) {
 }
 
 int DepthTable::firstWithin(double maxDepth) const {
-  // Binary search over [1, kEntries): the first d16 with depth(d16) <= maxDepth.
-  int low = 1;
-  int high = kEntries;
-  while (low < high) {
-    const int middle = low + (high - low) / 2;
-    if (depth(middle) <= maxDepth) {
-      high = middle;
-    } else {
-      low = middle + 1;
-    }
-  }
-  return low;
+  // Over d16 in [1, kEntries) the depths beyond maxDepth come first (z falls as d16 grows).
+  const auto first = std::partition_point(depth_.begin() + 1, depth_.end(), [&](double z) { return z > maxDepth; });
+  return static_cast<int>(first - depth_.begin());
 }
 
 }  // namespace fast

@@ -4,8 +4,9 @@
 // has the name and the result of its specification, bit for bit and for any thread count:
 // removeSky (sky_mask.cpp), removeOutliers (outlier_filter.cpp), the Densifier's confidence of the
 // valid pixels and applyMinConfidence (min_confidence.cpp), anchorToLidar (lidar_anchor.cpp),
-// geometry::depthImage and geometry::reproject (reprojection.cpp). Their buffers live in FastPassBuffers, kept between frames: after the first
-// frame of a size nothing is allocated. Compiled with the fast cpu backend (Highway).
+// geometry::depthImage and geometry::reproject (reprojection.cpp). Their buffers live in
+// FastPassBuffers, kept between frames: after the first frame of a size nothing is allocated.
+// Compiled with the fast cpu backend (Highway).
 
 #include <cstddef>
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include "lidar_sgm/pipeline/outlier_filter.hpp"
 #include "lidar_sgm/pipeline/sky_mask.hpp"
 #include "pipeline/fast/depth_table.hpp"
+#include "pipeline/lidar_anchor_rows.hpp"
 
 namespace lidar_sgm {
 namespace fast {
@@ -39,6 +41,9 @@ struct FastPassBuffers {
   DepthTable depthTable;
   std::vector<int> rowPoints;
   std::vector<std::size_t> removedPerRange;
+  // anchorToLidar: the frame's plan (its weights) and the pixels each range moved.
+  AnchorPlan anchorPlan;
+  std::vector<std::size_t> anchoredPerRange;
 };
 
 /// removeSky's result (sky_mask.hpp), also the option checks and their messages.
@@ -55,9 +60,10 @@ std::size_t removeOutliers(ImageView<std::int16_t> disparity16, const OutlierFil
 void confidenceOfValidPixels(ImageView<std::int16_t> disparity, ImageView<const std::uint8_t> matched,
                              ImageView<std::uint8_t> confidence, double minConfidence, int threads);
 
-/// anchorToLidar's result and checks (lidar_anchor.hpp).
+/// anchorToLidar's result and checks (lidar_anchor.hpp); `sums` are the caller's, as there.
 std::size_t anchorToLidar(ImageView<std::int16_t> disparity16, const std::vector<LidarSample>& samples,
-                          const LidarAnchorOptions& options, LidarAnchorBuffers& buffers, int threads);
+                          const LidarAnchorOptions& options, LidarAnchorBuffers& sums, FastPassBuffers& buffers,
+                          int threads);
 
 /// geometry::depthImage's result and checks; `depth` is resized (kept when the size is the same).
 void depthImage(ImageView<const std::int16_t> disparity16, double focalBaseline, double maxDepth, Image<float>& depth,
