@@ -5,6 +5,8 @@
 //     specification's loops (what -backend cpu_ref runs) and the fast passes, in turn frame by
 //     frame, each with its own buffers kept between frames as the Densifier keeps them; their
 //     medians and the median of the per-frame ratios. Exits 1 if the two disagree by one byte.
+//  3. The same for the passes before the matcher: the scan's projection into the left image and
+//     the pair check at its points.
 //
 //   build/bench/post_matcher_bench [-threads N] [-runs N] [-data ROOT] [-frame 000007_10]
 #include <algorithm>
@@ -74,6 +76,20 @@ template <typename T>
 bool sameImage(const Image<T>& a, const Image<T>& b) {
   return a.width() == b.width() && a.height() == b.height() &&
          std::memcmp(a.data(), b.data(), sizeof(T) * static_cast<std::size_t>(a.width()) * a.height()) == 0;
+}
+
+bool sameSamples(const lidar_sgm::geometry::ProjectedLidar& a, const lidar_sgm::geometry::ProjectedLidar& b) {
+  if (a.samples.size() != b.samples.size() || !sameBytes(a.sourceIndex, b.sourceIndex) ||
+      a.stats.describe() != b.stats.describe()) {
+    return false;
+  }
+  for (std::size_t i = 0; i < a.samples.size(); ++i) {
+    if (a.samples[i].x != b.samples[i].x || a.samples[i].y != b.samples[i].y ||
+        a.samples[i].disparity16 != b.samples[i].disparity16) {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool sameOutput(const PassOutput& a, const PassOutput& b) {
@@ -195,5 +211,48 @@ int main(int argc, char** argv) {
               median(fastConfidence), median(fastReproject), median(fastTotal));
   std::printf("  fast / specification, median of the per-frame ratios: %.3f [%.3f, %.3f]; outputs identical\n",
               median(ratio), *std::min_element(ratio.begin(), ratio.end()), *std::max_element(ratio.begin(), ratio.end()));
+
+  // 3. The passes before the matcher, on the scan and the pair of the frame.
+  const lidar_sgm::GrayImageView leftView = lidar_sgm::io::grayView(left);
+  const lidar_sgm::GrayImageView rightView = lidar_sgm::io::grayView(right);
+  lidar_sgm::geometry::ProjectedLidar specProjected;
+  lidar_sgm::geometry::ProjectedLidar fastProjected;
+  std::vector<double> specProject, specPair, fastProject, fastPair, beforeRatio;
+  for (int i = 0; i < runs + 2; ++i) {
+    auto start = Clock::now();
+    specification.project(points, shipped.usedCalibration(), shipped.projectionOptions(), specProjected);
+    const double sp = msSince(start);
+    start = Clock::now();
+    const lidar_sgm::PairOrientation specVotes =
+        specification.pairOrientationFromLidar(leftView, rightView, specProjected.samples);
+    const double sv = msSince(start);
+    start = Clock::now();
+    fast.project(points, shipped.usedCalibration(), shipped.projectionOptions(), fastProjected);
+    const double fp = msSince(start);
+    start = Clock::now();
+    const lidar_sgm::PairOrientation fastVotes =
+        fast.pairOrientationFromLidar(leftView, rightView, fastProjected.samples);
+    const double fv = msSince(start);
+    if (!sameSamples(specProjected, fastProjected) || specVotes.tested != fastVotes.tested ||
+        specVotes.givenWins != fastVotes.givenWins || specVotes.swappedWins != fastVotes.swappedWins) {
+      std::printf("the fast passes before the matcher differ from the specification's\n");
+      return 1;
+    }
+    if (i < 2) continue;
+    specProject.push_back(sp);
+    specPair.push_back(sv);
+    fastProject.push_back(fp);
+    fastPair.push_back(fv);
+    beforeRatio.push_back((fp + fv) / (sp + sv));
+  }
+  std::printf("passes before the matcher, %zu of %zu points kept | projection | pair check | both\n",
+              fastProjected.samples.size(), points.size());
+  std::printf("  specification         | %10.2f | %10.2f | %.2f\n", median(specProject), median(specPair),
+              median(specProject) + median(specPair));
+  std::printf("  fast                  | %10.2f | %10.2f | %.2f\n", median(fastProject), median(fastPair),
+              median(fastProject) + median(fastPair));
+  std::printf("  fast / specification, median of the per-frame ratios: %.3f [%.3f, %.3f]; outputs identical\n",
+              median(beforeRatio), *std::min_element(beforeRatio.begin(), beforeRatio.end()),
+              *std::max_element(beforeRatio.begin(), beforeRatio.end()));
   return 0;
 }

@@ -17,6 +17,12 @@ namespace lidar_sgm {
 
 namespace {
 
+/// The passes around the matcher for `backend` (resolved) on `threads`, created on first use.
+void selectPasses(std::unique_ptr<PostMatcherPasses>& passes, Backend backend, int threads) {
+  if (!passes) passes = std::make_unique<PostMatcherPasses>();
+  passes->select(backend, threads);
+}
+
 template <typename T>
 void copyInto(ImageView<const T> from, Image<T>& to) {
   to.resize(from.width, from.height);
@@ -190,9 +196,10 @@ void Densifier::match(const LidarPoints* lidar) {
     left = left16_.view();
     right = right16_.view();
   }
+  selectPasses(passes_, matcher_->backend(), effectiveThreads(usedParams_));
   pairOrientation_ = PairOrientation();
   if (config_.pairCheck && !left.empty()) {
-    pairOrientation_ = useLidar ? pairOrientationFromLidar(left, right, projected_.samples)
+    pairOrientation_ = useLidar ? passes_->pairOrientationFromLidar(left, right, projected_.samples)
                                 : pairOrientationFromStereo(left, right, usedParams_.minDisparity,
                                                             usedParams_.numDisparities);
     if (pairOrientation_.looksSwapped()) throw std::invalid_argument(swappedPairMessage(pairOrientation_));
@@ -220,8 +227,6 @@ void Densifier::match(const LidarPoints* lidar) {
   matcher_->compute(left, right, up, useLidar ? lidar : nullptr, disparity_.view());
   lastMode_ = matcher_->lastMode();
   const auto filtersStart = std::chrono::steady_clock::now();
-  if (!passes_) passes_ = std::make_unique<PostMatcherPasses>();
-  passes_->select(matcher_->backend(), effectiveThreads(usedParams_));
   if (config_.cropToScan && lastMode_ == MatchMode::LidarOnly) {
     // +-2 columns bridges the gaps between a beam's points (KITTI: ~1 px apart, with dropouts).
     geometry::cropToScanRows(disparity_.view(), projected_.samples, config_.matcher.lidarCoverageRows, 2);
@@ -331,7 +336,10 @@ const geometry::DenseCloud& Densifier::run(const std::vector<Eigen::Vector3f>& p
   if (pointsLidar.empty()) throw std::invalid_argument("the input cloud is empty");
 
   const auto start = std::chrono::steady_clock::now();
-  projected_ = geometry::project(pointsLidar, used_, config_.projection);
+  // Before the matcher exists (its range comes from this projection): the backend it will run.
+  selectPasses(passes_, matcher_ && matcherBackend_ == config_.backend ? matcher_->backend() : resolve(config_.backend),
+               effectiveThreads(config_.matcher));
+  passes_->project(pointsLidar, used_, config_.projection, projected_);
   timings_.project = millisecondsSince(start);
   if (projected_.samples.empty()) {
     throw std::invalid_argument("no point of the cloud projects into the image (" + projected_.stats.describe() +

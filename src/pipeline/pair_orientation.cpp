@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "pipeline/pair_orientation_votes.hpp"
 #include "patch_match.hpp"
 
 namespace lidar_sgm {
@@ -48,22 +49,37 @@ std::string PairOrientation::describe() const {
          std::to_string(givenWins) + " at x - d (as given)";
 }
 
-PairOrientation pairOrientationFromLidar(const GrayImageView& leftView, const GrayImageView& rightView,
-                                         const std::vector<LidarSample>& lidar) {
-  PairOrientation votes;
-  votes.fromLidar = true;
-  if (!usable(leftView, rightView)) return votes;
+std::size_t lidarTestStep(std::size_t samples) { return std::max<std::size_t>(1, samples / kMaxLidarTests); }
+
+std::size_t lidarTestCount(std::size_t samples) {
+  const std::size_t step = lidarTestStep(samples);
+  return (samples + step - 1) / step;
+}
+
+bool pairVotable(const GrayImageView& left, const GrayImageView& right) { return usable(left, right); }
+
+void voteAtLidarSamples(const GrayImageView& leftView, const GrayImageView& rightView,
+                        const std::vector<LidarSample>& lidar, std::size_t begin, std::size_t end,
+                        PairOrientation& votes) {
   const Gray left(leftView);
   const Gray right(rightView);
-  const std::size_t step = std::max<std::size_t>(1, lidar.size() / kMaxLidarTests);
-  for (std::size_t k = 0; k < lidar.size(); k += step) {
-    const LidarSample& s = lidar[k];
+  const std::size_t step = lidarTestStep(lidar.size());
+  for (std::size_t test = begin; test < end; ++test) {
+    const LidarSample& s = lidar[test * step];
     const int d = (s.disparity16 + 8) / 16;
     if (d < 3 || !inside(left, s.x, s.y) || !inside(right, s.x - d, s.y) || !inside(right, s.x + d, s.y)) continue;
     const double mean = patchMean(left, s.x, s.y);
     if (patchTexture(left, s.x, s.y, mean) < left.flatness()) continue;
     vote(votes, zsad(left, mean, right, s.x, s.x - d, s.y), zsad(left, mean, right, s.x, s.x + d, s.y));
   }
+}
+
+PairOrientation pairOrientationFromLidar(const GrayImageView& leftView, const GrayImageView& rightView,
+                                         const std::vector<LidarSample>& lidar) {
+  PairOrientation votes;
+  votes.fromLidar = true;
+  if (!usable(leftView, rightView)) return votes;
+  voteAtLidarSamples(leftView, rightView, lidar, 0, lidarTestCount(lidar.size()), votes);
   return votes;
 }
 

@@ -31,6 +31,26 @@ void PostMatcherPasses::select(Backend backend, int threads) {
   threads_ = std::max(1, threads);
 }
 
+void PostMatcherPasses::project(const std::vector<Eigen::Vector3f>& pointsLidar,
+                                const geometry::StereoCalibration& calibration,
+                                const geometry::ProjectionOptions& options, geometry::ProjectedLidar& out) {
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  if (fast_) {
+    fast::project(pointsLidar, calibration, options, out, *buffers_, threads_);
+    return;
+  }
+#endif
+  out = geometry::project(pointsLidar, calibration, options);
+}
+
+PairOrientation PostMatcherPasses::pairOrientationFromLidar(const GrayImageView& left, const GrayImageView& right,
+                                                           const std::vector<LidarSample>& lidar) {
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  if (fast_) return fast::pairOrientationFromLidar(left, right, lidar, *buffers_, threads_);
+#endif
+  return lidar_sgm::pairOrientationFromLidar(left, right, lidar);
+}
+
 OutputFilterStats PostMatcherPasses::applyOutputFilters(ImageView<std::int16_t> disparity16,
                                                         const std::vector<LidarSample>& samples,
                                                         const GrayImageView& left, const OutputFilterOptions& options) {

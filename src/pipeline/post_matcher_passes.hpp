@@ -1,7 +1,8 @@
 #pragma once
-// The Densifier's passes after the matcher (output filters, the LiDAR anchor, confidence, minimum
-// confidence, depth and cloud), each run as its specification's loops (sky_mask.cpp,
-// outlier_filter.cpp, lidar_anchor.cpp, min_confidence.cpp, geometry/reprojection.cpp) or as the
+// The Densifier's passes around the matcher (the scan's projection before it; output filters, the
+// LiDAR anchor, confidence, minimum confidence, depth and cloud after it), each run as its
+// specification's loops (geometry/projection.cpp, sky_mask.cpp, outlier_filter.cpp,
+// lidar_anchor.cpp, min_confidence.cpp, geometry/reprojection.cpp) or as the
 // fast passes (fast/fast_passes.hpp), which give the same bytes. Which: the fast ones with every backend but cpu_ref, where they are
 // built (with the fast cpu backend); cpu_ref runs the specification end to end.
 
@@ -12,9 +13,11 @@
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
 #include "lidar_sgm/core/matcher.hpp"
+#include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
 #include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/output_filters.hpp"
+#include "lidar_sgm/pipeline/pair_orientation.hpp"
 
 namespace lidar_sgm {
 
@@ -36,6 +39,12 @@ class PostMatcherPasses {
   void select(Backend backend, int threads);
   bool fast() const { return fast_; }
 
+  /// geometry::project into `out` (whose vectors keep their capacity on the fast path).
+  void project(const std::vector<Eigen::Vector3f>& pointsLidar, const geometry::StereoCalibration& calibration,
+               const geometry::ProjectionOptions& options, geometry::ProjectedLidar& out);
+  /// pairOrientationFromLidar (pair_orientation.hpp).
+  PairOrientation pairOrientationFromLidar(const GrayImageView& left, const GrayImageView& right,
+                                           const std::vector<LidarSample>& lidar);
   /// Sky first (it removes whole runs from the top of a column), then the isolated points, some
   /// of which the sky removal leaves behind at the border of the removed region.
   OutputFilterStats applyOutputFilters(ImageView<std::int16_t> disparity16, const std::vector<LidarSample>& samples,

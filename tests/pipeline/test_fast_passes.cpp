@@ -1,5 +1,5 @@
-// The fast passes after the matcher (src/pipeline/fast) against their specification, bit for
-// bit: the sky and outlier filters, the confidence of the valid pixels with its threshold, the
+// The fast passes around the matcher (src/pipeline/fast) against their specification, bit for
+// bit: the scan's projection and the pair check at its points, the sky and outlier filters, the confidence of the valid pixels with its threshold, the
 // depth image and the cloud; odd and tiny sizes, padded strides, 8- and 16-bit images, option
 // values at the ends of their ranges, on 1, 2, 3 and 7 threads. Then the Densifier: the same
 // frame on cpu_ref (the specification end to end) and on the fast backend gives the same bytes,
@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "lidar_sgm/pipeline/pair_orientation.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 #include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
@@ -336,6 +338,109 @@ TEST_P(FastPasses, DepthAndCloudAreTheSpecifications) {
   EXPECT_THROW(fast::reproject(d.view(), calibrationOf({5, 4, 5}), bad, cloud, buffers, threads()), std::invalid_argument);
   EXPECT_THROW(fast::reproject(d.view(), calibrationOf({6, 4, 6}), {}, cloud, buffers, threads()), std::invalid_argument);
   EXPECT_THROW(fast::depthImage(d.view(), 0.0, 80.0, depth, buffers, threads()), std::invalid_argument);
+}
+
+::testing::AssertionResult sameProjection(const geometry::ProjectedLidar& a, const geometry::ProjectedLidar& b) {
+  if (a.width != b.width || a.height != b.height || a.samples.size() != b.samples.size() ||
+      a.sourceIndex.size() != b.sourceIndex.size()) {
+    return ::testing::AssertionFailure() << "the projections' shapes differ: " << a.samples.size() << " vs "
+                                         << b.samples.size() << " samples";
+  }
+  for (std::size_t i = 0; i < a.samples.size(); ++i) {
+    const LidarSample& p = a.samples[i];
+    const LidarSample& q = b.samples[i];
+    if (p.x != q.x || p.y != q.y || p.disparity16 != q.disparity16 || a.sourceIndex[i] != b.sourceIndex[i]) {
+      return ::testing::AssertionFailure() << "sample " << i << " differs";
+    }
+  }
+  const geometry::ProjectionStats& s = a.stats;
+  const geometry::ProjectionStats& t = b.stats;
+  if (s.input != t.input || s.nonFinite != t.nonFinite || s.behindCamera != t.behindCamera ||
+      s.outOfRange != t.outOfRange || s.outsideImage != t.outsideImage || s.occluded != t.occluded ||
+      s.kept != t.kept) {
+    return ::testing::AssertionFailure() << "the counts differ: " << s.describe() << " vs " << t.describe();
+  }
+  return ::testing::AssertionSuccess();
+}
+
+TEST_P(FastPasses, ProjectionIsTheSpecifications) {
+  std::mt19937 engine(31);
+  fast::FastPassBuffers buffers;
+  geometry::ProjectedLidar actual;  // one for every case: its vectors keep their memory
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const Size s : kSizes) {
+    const geometry::StereoCalibration c = calibrationOf(s);
+    // A far wall, a near box over part of it (background points inside its silhouette), a few
+    // points per pixel, and points each check drops: NaN, behind the camera, too near, outside.
+    std::vector<Eigen::Vector3f> points;
+    for (int k = 0; k < 6 * s.width * s.height + 40; ++k) {
+      const double u = -2.0 + (s.width + 3.0) * static_cast<double>(engine() % 10000u) / 10000.0;
+      const double v = -2.0 + (s.height + 3.0) * static_cast<double>(engine() % 10000u) / 10000.0;
+      const bool box = u > 0.3 * s.width && u < 0.6 * s.width && v > 0.2 * s.height && v < 0.7 * s.height;
+      double z = box && engine() % 3u != 0 ? 5.0 + static_cast<double>(engine() % 100u) / 100.0
+                                           : 20.0 + static_cast<double>(engine() % 500u) / 100.0;
+      const auto pick = engine() % 50u;
+      if (pick == 0) z = -z;    // behind the camera
+      if (pick == 1) z = 0.2;   // nearer than minDepth
+      points.push_back(test::lidarPointAt(c, u, v, z));
+      if (pick == 2) points.back().x() = nan;
+      if (pick == 3) points.back().z() = std::numeric_limits<float>::infinity();
+    }
+    geometry::ProjectionOptions open;
+    open.occlusion.requireEnclosed = false;
+    geometry::ProjectionOptions off;
+    off.occlusion.enabled = false;
+    geometry::ProjectionOptions wide;
+    wide.occlusion.halfWidth = 5;
+    wide.occlusion.halfHeight = 0;
+    wide.maxDepth = 23.0;
+    for (const geometry::ProjectionOptions& o : {geometry::ProjectionOptions{}, open, off, wide}) {
+      const geometry::ProjectedLidar expected = geometry::project(points, c, o);
+      fast::project(points, c, o, actual, buffers, threads());
+      ASSERT_TRUE(sameProjection(expected, actual)) << s.width << "x" << s.height;
+    }
+    // The first half of the cloud: fewer points than the buffers hold from the last call.
+    points.resize(points.size() / 2);
+    fast::project(points, c, {}, actual, buffers, threads());
+    ASSERT_TRUE(sameProjection(geometry::project(points, c, {}), actual)) << s.width << "x" << s.height;
+  }
+  geometry::ProjectionOptions bad;
+  bad.minDepth = 0.0;
+  EXPECT_THROW(fast::project({}, calibrationOf({5, 4, 5}), bad, actual, buffers, threads()), std::invalid_argument);
+  fast::project({}, calibrationOf({5, 4, 5}), {}, actual, buffers, threads());
+  EXPECT_TRUE(actual.samples.empty());
+  EXPECT_EQ(actual.stats.input, 0u);
+}
+
+TEST_P(FastPasses, PairOrientationFromLidarIsTheSpecifications) {
+  const test::SyntheticStereo stereo =
+      test::makeStereo(301, 83, [](double x, double y) { return 6.0 + 0.03 * x + 0.05 * y; });
+  std::mt19937 engine(37);
+  fast::FastPassBuffers buffers;
+  // Fewer samples than tests allowed, then more (every step-th sample is tested), some far off.
+  for (const int count : {0, 1, 2, 700, 9001}) {
+    std::vector<LidarSample> samples;
+    for (int k = 0; k < count; ++k) {
+      const int x = static_cast<int>(engine() % 301u);
+      const int y = static_cast<int>(engine() % 83u);
+      const int d16 = engine() % 4u == 0 ? static_cast<int>(engine() % 600u)
+                                         : static_cast<int>(16.0 * stereo.disparity(x, y) + 0.5f);
+      samples.push_back({x, y, d16});
+    }
+    for (const bool swapped : {false, true}) {
+      const GrayImageView left(swapped ? stereo.right.view() : stereo.left.view());
+      const GrayImageView right(swapped ? stereo.left.view() : stereo.right.view());
+      const PairOrientation expected = pairOrientationFromLidar(left, right, samples);
+      const PairOrientation actual = fast::pairOrientationFromLidar(left, right, samples, buffers, threads());
+      EXPECT_TRUE(actual.fromLidar);
+      EXPECT_EQ(actual.tested, expected.tested) << count << " samples";
+      EXPECT_EQ(actual.givenWins, expected.givenWins) << count << " samples";
+      EXPECT_EQ(actual.swappedWins, expected.swappedWins) << count << " samples";
+      if (count == 9001) {
+        EXPECT_EQ(actual.looksSwapped(), swapped) << "the scene must decide both ways";
+      }
+    }
+  }
 }
 
 #endif  // LIDAR_SGM_HAVE_FAST_PASSES

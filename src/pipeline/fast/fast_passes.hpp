@@ -2,7 +2,7 @@
 // The passes after the matcher, fast: vectorised where the arithmetic allows (Highway, the
 // instruction set chosen at run time) and split among threads by fixed row ranges. Each function
 // has the name and the result of its specification, bit for bit and for any thread count:
-// removeSky (sky_mask.cpp), removeOutliers (outlier_filter.cpp), the Densifier's confidence of the
+// geometry::project (projection.cpp), pairOrientationFromLidar (pair_orientation.cpp), removeSky (sky_mask.cpp), removeOutliers (outlier_filter.cpp), the Densifier's confidence of the
 // valid pixels and applyMinConfidence (min_confidence.cpp), anchorToLidar (lidar_anchor.cpp),
 // geometry::depthImage and geometry::reproject (reprojection.cpp). Their buffers live in
 // FastPassBuffers, kept between frames: after the first frame of a size nothing is allocated.
@@ -15,9 +15,12 @@
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
 #include "lidar_sgm/core/matcher.hpp"
+#include "lidar_sgm/geometry/projection.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
+#include "geometry/projection_steps.hpp"
 #include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/outlier_filter.hpp"
+#include "lidar_sgm/pipeline/pair_orientation.hpp"
 #include "lidar_sgm/pipeline/sky_mask.hpp"
 #include "pipeline/fast/depth_table.hpp"
 #include "pipeline/lidar_anchor_rows.hpp"
@@ -25,8 +28,24 @@
 namespace lidar_sgm {
 namespace fast {
 
+/// project's buffers: per range of the points, their candidates, counts and kept samples; the
+/// nearest point per pixel and the rows any point projects into.
+struct ProjectionRanges {
+  std::vector<std::vector<geometry::ProjectionCandidate>> candidates;
+  std::vector<geometry::ProjectionStats> stats;
+  std::vector<std::vector<LidarSample>> samples;
+  std::vector<std::vector<std::size_t>> sourceIndex;
+  std::vector<std::size_t> occluded;
+  Image<std::int16_t> nearest;
+  std::vector<std::uint8_t> occupied;
+};
+
 /// Grows only: a frame of the size seen before reuses every buffer.
 struct FastPassBuffers {
+  // project: the ranges' candidates and samples, the nearest image.
+  ProjectionRanges projection;
+  // pairOrientationFromLidar: each range's votes.
+  std::vector<PairOrientation> pairVotes;
   // removeOutliers: the input disparity with `radius` invalid columns on each side.
   std::vector<std::int16_t> paddedDisparity;
   // removeSky: per column, and per pixel of the rows that hold candidates.
@@ -45,6 +64,17 @@ struct FastPassBuffers {
   AnchorPlan anchorPlan;
   std::vector<std::size_t> anchoredPerRange;
 };
+
+/// geometry::project's result and checks, written into `out` (whose vectors keep their capacity
+/// between frames).
+void project(const std::vector<Eigen::Vector3f>& pointsLidar, const geometry::StereoCalibration& calibration,
+             const geometry::ProjectionOptions& options, geometry::ProjectedLidar& out, FastPassBuffers& buffers,
+             int threads);
+
+/// pairOrientationFromLidar's votes (pair_orientation.hpp).
+PairOrientation pairOrientationFromLidar(const GrayImageView& left, const GrayImageView& right,
+                                         const std::vector<LidarSample>& lidar, FastPassBuffers& buffers,
+                                         int threads);
 
 /// removeSky's result (sky_mask.hpp), also the option checks and their messages.
 std::size_t removeSky(ImageView<std::int16_t> disparity16, const std::vector<LidarSample>& samples,
