@@ -135,13 +135,14 @@ HWY_INLINE T* WindowOfSlot(T* slotValues, const std::int16_t* first, const std::
 template <typename T>
 void PathRowFromPreviousT(const std::uint8_t* costRow, int costX0, const T* previous, const std::uint16_t* previousMin,
                           int dx, int width, int x0, int x1, int D, int P1, int P2, T* out, std::uint16_t* outMin,
-                          const std::int16_t* first, const std::int16_t* count) {
+                          const std::int16_t* first, const std::int16_t* count, const std::uint32_t* costOffset) {
   const int slot = pathSlot(D);
   for (int x = x0; x < x1; ++x) {
     int f = 0;
     int n = D;
     T* L = WindowOfSlot(out + static_cast<std::size_t>(x) * slot + 1, first, count, x, D, f, n);
-    const std::uint8_t* c = costRow + static_cast<std::size_t>(x - costX0) * D + f;
+    const std::uint8_t* c = costOffset != nullptr ? costRow + costOffset[x]
+                                                  : costRow + static_cast<std::size_t>(x - costX0) * D + f;
     const int px = x - dx;
     if (previous == nullptr || px < 0 || px >= width) {
       outMin[x] = static_cast<std::uint16_t>(PathStart(c, L, n));
@@ -171,23 +172,26 @@ void PathRowHorizontalT(const std::uint8_t* costRow, int dx, int width, int D, i
 // minimum); interleaving two independent chains keeps the vector units busy.
 template <typename T>
 void PathRowsHorizontalT(const std::uint8_t* costRow, int width, int D, int P1, int P2, T* rightward, T* leftward,
-                         const std::int16_t* first, const std::int16_t* count) {
+                         const std::int16_t* first, const std::int16_t* count, const std::uint32_t* costOffset) {
   const int slot = pathSlot(D);
   const auto at = [&](T* row, int x) { return row + static_cast<std::size_t>(x) * slot + 1; };
-  const auto cost = [&](int x) { return costRow + static_cast<std::size_t>(x) * D; };
+  // Pixel x's window's costs (its first entry is disparity index f).
+  const auto cost = [&](int x, int f) {
+    return costOffset != nullptr ? costRow + costOffset[x] : costRow + static_cast<std::size_t>(x) * D + f;
+  };
   int f = 0;
   int n = D;
   T* L = WindowOfSlot(at(rightward, 0), first, count, 0, D, f, n);
-  unsigned minRight = PathStart(cost(0) + f, L, n);
+  unsigned minRight = PathStart(cost(0, f), L, n);
   L = WindowOfSlot(at(leftward, width - 1), first, count, width - 1, D, f, n);
-  unsigned minLeft = PathStart(cost(width - 1) + f, L, n);
+  unsigned minLeft = PathStart(cost(width - 1, f), L, n);
   for (int j = 1; j < width; ++j) {
     const int xr = j;
     const int xl = width - 1 - j;
     L = WindowOfSlot(at(rightward, xr), first, count, xr, D, f, n);
-    minRight = PathStep(cost(xr) + f, at(rightward, xr - 1) + f, minRight, L, n, P1, P2);
+    minRight = PathStep(cost(xr, f), at(rightward, xr - 1) + f, minRight, L, n, P1, P2);
     L = WindowOfSlot(at(leftward, xl), first, count, xl, D, f, n);
-    minLeft = PathStep(cost(xl) + f, at(leftward, xl + 1) + f, minLeft, L, n, P1, P2);
+    minLeft = PathStep(cost(xl, f), at(leftward, xl + 1) + f, minLeft, L, n, P1, P2);
   }
 }
 
@@ -228,13 +232,14 @@ void AddPathRowT(const T* path, int x0, int x1, int D, std::uint16_t* sumRow) {
 // Exported, one per element type (dispatch tables hold plain functions).
 void PathRowFromPrevious8(const std::uint8_t* c, int cx0, const std::uint8_t* prev, const std::uint16_t* prevMin,
                           int dx, int w, int x0, int x1, int D, int P1, int P2, std::uint8_t* out, std::uint16_t* outMin,
-                          const std::int16_t* first, const std::int16_t* count) {
-  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin, first, count);
+                          const std::int16_t* first, const std::int16_t* count, const std::uint32_t* costOffset) {
+  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin, first, count, costOffset);
 }
 void PathRowFromPrevious16(const std::uint8_t* c, int cx0, const std::uint16_t* prev, const std::uint16_t* prevMin,
                            int dx, int w, int x0, int x1, int D, int P1, int P2, std::uint16_t* out,
-                           std::uint16_t* outMin, const std::int16_t* first, const std::int16_t* count) {
-  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin, first, count);
+                           std::uint16_t* outMin, const std::int16_t* first, const std::int16_t* count,
+                           const std::uint32_t* costOffset) {
+  PathRowFromPreviousT(c, cx0, prev, prevMin, dx, w, x0, x1, D, P1, P2, out, outMin, first, count, costOffset);
 }
 void PathRowHorizontal8(const std::uint8_t* c, int dx, int w, int D, int P1, int P2, std::uint8_t* out) {
   PathRowHorizontalT(c, dx, w, D, P1, P2, out);
@@ -243,12 +248,14 @@ void PathRowHorizontal16(const std::uint8_t* c, int dx, int w, int D, int P1, in
   PathRowHorizontalT(c, dx, w, D, P1, P2, out);
 }
 void PathRowsHorizontal8(const std::uint8_t* c, int w, int D, int P1, int P2, std::uint8_t* right,
-                         std::uint8_t* left, const std::int16_t* first, const std::int16_t* count) {
-  PathRowsHorizontalT(c, w, D, P1, P2, right, left, first, count);
+                         std::uint8_t* left, const std::int16_t* first, const std::int16_t* count,
+                         const std::uint32_t* costOffset) {
+  PathRowsHorizontalT(c, w, D, P1, P2, right, left, first, count, costOffset);
 }
 void PathRowsHorizontal16(const std::uint8_t* c, int w, int D, int P1, int P2, std::uint16_t* right,
-                          std::uint16_t* left, const std::int16_t* first, const std::int16_t* count) {
-  PathRowsHorizontalT(c, w, D, P1, P2, right, left, first, count);
+                          std::uint16_t* left, const std::int16_t* first, const std::int16_t* count,
+                          const std::uint32_t* costOffset) {
+  PathRowsHorizontalT(c, w, D, P1, P2, right, left, first, count, costOffset);
 }
 void StorePathSum8(const std::uint8_t* const* paths, int count, int x0, int x1, int D, std::uint8_t* s8,
                    std::uint16_t* s16) {
@@ -291,13 +298,15 @@ void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uin
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
                          int P1, int P2, std::uint8_t* out, std::uint16_t* outMin, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(PathRowFromPrevious8)(costRow, costX0, previous, previousMin, dx, width, x0, x1, numDisparities,
-                                             P1, P2, out, outMin, windows.first, windows.count);
+                                             P1, P2, out, outMin, windows.first, windows.count,
+                                             windows.costOffset);
 }
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint16_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,
                          int P1, int P2, std::uint16_t* out, std::uint16_t* outMin, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(PathRowFromPrevious16)(costRow, costX0, previous, previousMin, dx, width, x0, x1,
-                                              numDisparities, P1, P2, out, outMin, windows.first, windows.count);
+                                              numDisparities, P1, P2, out, outMin, windows.first, windows.count,
+                                             windows.costOffset);
 }
 void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDisparities, int P1, int P2,
                        std::uint8_t* out) {
@@ -310,12 +319,12 @@ void pathRowHorizontal(const std::uint8_t* costRow, int dx, int width, int numDi
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
                         std::uint8_t* rightward, std::uint8_t* leftward, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(PathRowsHorizontal8)(costRow, width, numDisparities, P1, P2, rightward, leftward,
-                                            windows.first, windows.count);
+                                            windows.first, windows.count, windows.costOffset);
 }
 void pathRowsHorizontal(const std::uint8_t* costRow, int width, int numDisparities, int P1, int P2,
                         std::uint16_t* rightward, std::uint16_t* leftward, RowWindows windows) {
   HWY_DYNAMIC_DISPATCH(PathRowsHorizontal16)(costRow, width, numDisparities, P1, P2, rightward, leftward,
-                                             windows.first, windows.count);
+                                             windows.first, windows.count, windows.costOffset);
 }
 void storePathSum(const std::uint8_t* const* paths, int count, int x0, int x1, int numDisparities,
                   std::uint8_t* stored8, std::uint16_t* stored16) {

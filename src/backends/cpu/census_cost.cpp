@@ -91,13 +91,13 @@ HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* plan
     } else if (kFusion == Fusion::ZeroLidar) {
       sum = FuseVector(d, sum, sum, false, alphaWeight256);
     }
-    hn::StoreU(sum, d, out + i);
+    hn::StoreU(sum, d, out + (i - i0));
   }
 }
 
-// The costs of disparity indices [first, first + count) (count a multiple of 16): the whole range,
-// or a gated pixel's window (the entries outside it are never read). Whole vectors of the target
-// (64 disparities a step with AVX-512, 32 with AVX2), then 16 at a time for the rest.
+// The costs of disparity indices [first, first + count) (count a multiple of 16) into out[0 ..
+// count): the whole range, or a gated pixel's window. Whole vectors of the target (64 disparities
+// a step with AVX-512, 32 with AVX2), then 16 at a time for the rest.
 template <int kBytes, Fusion kFusion>
 HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int first,
                           int count, int dBegin, int dEnd, const std::uint8_t* lidar, int alphaWeight256,
@@ -110,7 +110,7 @@ HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::s
                                 out);
   if (whole < count) {
     HammingPixel<kBytes, kFusion>(d16, left, planes, planeStride, first + whole, count - whole, dBegin, dEnd, lidar,
-                                  alphaWeight256, out);
+                                  alphaWeight256, out + whole);
   }
 }
 
@@ -118,11 +118,13 @@ HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::s
 template <int kBytes>
 void CensusCostRowBytes(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                         int pad, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
-                        std::uint8_t* cost, const std::int16_t* windowFirst, const std::int16_t* windowCount) {
+                        std::uint8_t* cost, const std::int16_t* windowFirst, const std::int16_t* windowCount,
+                        const std::uint32_t* costOffset) {
   for (int x = x0; x < x1; ++x) {
-    std::uint8_t* c = cost + static_cast<std::size_t>(x - x0) * D;
     const int first = windowFirst == nullptr ? 0 : windowFirst[x];
     const int count = windowFirst == nullptr ? D : windowCount[x];
+    // Where the window's first cost goes: in the whole range's layout, or packed (RowWindows).
+    std::uint8_t* c = costOffset != nullptr ? cost + costOffset[x] : cost + static_cast<std::size_t>(x - x0) * D + first;
     // Plane index of d = 0: the right pixel xr = x - minDisparity sits at width - 1 - xr.
     const std::uint8_t* planes = rightPlanes + pad + (width - 1 - x + minDisparity);
     // Disparities whose right pixel lies inside the image: [dBegin, dEnd).
@@ -145,13 +147,14 @@ void CensusCostRowBytes(const std::uint64_t* leftRow, const std::uint8_t* rightP
 
 void CensusCostRowImpl(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                        int pad, int bytes, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
-                       std::uint8_t* cost, const std::int16_t* windowFirst, const std::int16_t* windowCount) {
+                       std::uint8_t* cost, const std::int16_t* windowFirst, const std::int16_t* windowCount,
+                       const std::uint32_t* costOffset) {
   if (bytes == 8) {
     CensusCostRowBytes<8>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost,
-                          windowFirst, windowCount);
+                          windowFirst, windowCount, costOffset);
   } else {
     CensusCostRowBytes<4>(leftRow, rightPlanes, planeStride, pad, width, x0, x1, minDisparity, D, fusion, cost,
-                          windowFirst, windowCount);
+                          windowFirst, windowCount, costOffset);
   }
 }
 
@@ -193,7 +196,8 @@ void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes
                    std::uint8_t* cost, RowWindows windows) {
   const int bytes = type == CensusType::Census9x7 ? 8 : 4;  // 62 or 31 bits
   HWY_DYNAMIC_DISPATCH(CensusCostRowImpl)(leftRow, rightPlanes, planeStride, pad, bytes, width, x0, x1, minDisparity,
-                                          numDisparities, nullptr, cost, windows.first, windows.count);
+                                          numDisparities, nullptr, cost, windows.first, windows.count,
+                                          windows.costOffset);
 }
 
 void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
@@ -203,7 +207,8 @@ void censusCostFusedRow(const std::uint64_t* leftRow, const std::uint8_t* rightP
   const int bytes = type == CensusType::Census9x7 ? 8 : 4;
   const CostFusion fusion{lidar, touched, weights, alphaWeight256, stereoCostWithoutLidar};
   HWY_DYNAMIC_DISPATCH(CensusCostRowImpl)(leftRow, rightPlanes, planeStride, pad, bytes, width, x0, x1, minDisparity,
-                                          numDisparities, &fusion, cost, windows.first, windows.count);
+                                          numDisparities, &fusion, cost, windows.first, windows.count,
+                                          windows.costOffset);
 }
 
 void censusCost(ImageView<const std::uint64_t> leftCensus, ImageView<const std::uint64_t> rightCensus,

@@ -25,9 +25,14 @@ inline int pathSlot(int numDisparities) { return numDisparities + 2; }
 // A gated pixel's path slots hold the sentinel outside its window, so that the next pixel on the
 // path reads the terms of Eq. 1 outside it as absent (gated_stages.hpp), and the kernels step
 // and select over the window only.
+//
+// The path kernels read a gated row's costs either in the whole range's layout (pixel x's window
+// at (x - costX0) * D + first[x]) or packed: each pixel's window alone, pixel x's from
+// costOffset[x] on (the cost volume of a gated frame, cpu_matcher.hpp).
 struct RowWindows {
   const std::int16_t* first = nullptr;
   const std::int16_t* count = nullptr;
+  const std::uint32_t* costOffset = nullptr;
 };
 
 // census.cpp: one row of the census transform (cpu_ref's bit order, border pixels repeated).
@@ -49,7 +54,8 @@ void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* pl
 void censusPlanes(const std::uint64_t* row, int width, int pad, int xr0, int xr1, std::uint8_t* planes,
                   std::size_t planeStride);
 // C_S for pixels x0 .. x1-1 of one row into cost[(x - x0) * D + d]; with `windows` only the d of
-// each pixel's window (the other entries are left as they were).
+// each pixel's window (the other entries are left as they were), or with windows.costOffset the
+// window alone from cost[costOffset[x]] on (a packed row).
 void censusCostRow(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride, int pad,
                    CensusType type, int width, int x0, int x1, int minDisparity, int numDisparities,
                    std::uint8_t* cost, RowWindows windows = {});

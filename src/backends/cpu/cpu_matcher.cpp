@@ -58,6 +58,8 @@ void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std
     // The LiDAR gate (shared with cpu_ref): the sweeps step and select over these windows only.
     searchWindows(f);
     f.windows = &windows_;
+    packCostLayout(f);
+    f.packedCost = true;
   }
   out.timings.census = msSince(start);
   runStages(f, disparity);
@@ -144,6 +146,39 @@ void CpuMatcher::runStages(const Frame& f, ImageView<std::int16_t> disparity) {
   }
 }
 
+// Row by row (split among the threads), each pixel's offset in its row; then the rows' starts.
+void CpuMatcher::packCostLayout(const Frame& f) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  costOffsets_.resize(static_cast<std::size_t>(W) * H);
+  costRowStart_.resize(static_cast<std::size_t>(H) + 1);
+  parallelRanges(H, f.threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const std::int16_t* count = windows_.countRow(y);
+      std::uint32_t* offset = costOffsets_.data() + static_cast<std::size_t>(y) * W;
+      std::uint32_t total = 0;
+      for (int x = 0; x < W; ++x) {
+        offset[x] = total;
+        total += static_cast<std::uint32_t>(count[x]);
+      }
+      costRowStart_[static_cast<std::size_t>(y) + 1] = total;  // the row's size, summed below
+    }
+  });
+  costRowStart_[0] = 0;
+  for (int y = 0; y < H; ++y) costRowStart_[static_cast<std::size_t>(y) + 1] += costRowStart_[static_cast<std::size_t>(y)];
+}
+
+std::uint8_t* CpuMatcher::costRow(const Frame& f, int y) {
+  return cost_.data() + (f.packedCost ? costRowStart_[static_cast<std::size_t>(y)]
+                                      : static_cast<std::size_t>(y) * f.plan.width * f.plan.D);
+}
+
+RowWindows CpuMatcher::costWindows(const Frame& f, int y) const {
+  RowWindows windows = rowWindows(f, y);
+  if (f.packedCost) windows.costOffset = costOffsets_.data() + static_cast<std::size_t>(y) * f.plan.width;
+  return windows;
+}
+
 void CpuMatcher::prepareBuffers(const Frame& f) {
   const FramePlan& plan = f.plan;
   const int W = plan.width;
@@ -196,6 +231,7 @@ void CpuMatcher::prepareWorkers(const Frame& f, bool newLayout) {
   for (Worker& w : workers_) {
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);
+    if (f.packedCost && !costsPackedInPlace(f)) resizeKeep(w.costRow, partMax);
     if (plan.upCamera()) resizeKeep(w.vertical, partMax);
     resizeKeep(w.total, static_cast<std::size_t>(plan.D));
     if (plan.useCameras()) {

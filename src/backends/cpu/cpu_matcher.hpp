@@ -4,8 +4,8 @@
 //   sweep up    bottom to top, columns split among the threads (no synchronisation with 4
 //               paths): the cost C(p, .) of each pixel - the pair's census of the row (each
 //               thread the columns it needs: no census image is kept), census cost, LiDAR cost from the points
-//               around p, fusion, all on the fly - is stored (8 bits, the only full volume),
-//               and the upward paths (1 of 4, 3 of 8) recurse in row buffers; their state is
+//               around p, fusion, all on the fly - is stored (8 bits, the only full volume;
+//               in a LiDAR-gated frame each pixel's window alone, packed), and the upward paths (1 of 4, 3 of 8) recurse in row buffers; their state is
 //               kept only at the first row of every chunk of kChunkRows rows (a checkpoint).
 //   sweep down  top to bottom, chunk by chunk: first (columns split) the upward paths of the
 //               chunk's rows again from the checkpoint below it, then the downward paths; then
@@ -22,7 +22,10 @@
 // write and read back. C is the one volume kept (it costs the most to recompute: 62-bit
 // Hamming distances); the upward paths are recomputed per chunk instead of stored (one path
 // step, cheaper than a second volume). Every sum is of the same non-negative integers in any
-// order, so the result is cpu_ref's bit for bit whatever the thread count.
+// order, so the result is cpu_ref's bit for bit whatever the thread count. Packing a gated
+// frame's volume (KITTI 000007_10 with its scan: 64 % of the bytes at 80 disparities, 54 % at
+// 128) saves no measurable time on the 2-core VM but 10-24 MiB of peak memory, and the volume
+// grows with the windows instead of the range (BENCHMARK.md).
 
 #include <chrono>
 #include <cstdint>
@@ -59,6 +62,8 @@ class CpuMatcher final : public MatcherBackend {
     const LidarPoints* lidar = nullptr;
     /// The gated search's windows (Parameters::gatedSearch); null: every pixel the whole range.
     const SearchWindows* windows = nullptr;
+    /// With windows: the cost volume holds each pixel's window alone (packCostLayout).
+    bool packedCost = false;
     int threads = 1;
     int verticalPaths = 1;       // per sweep: 1 with 4 paths, 3 with 8
     bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)
@@ -71,6 +76,7 @@ class CpuMatcher final : public MatcherBackend {
     std::vector<std::uint8_t> stereo;    // C_S (fused mode)
     std::vector<std::uint8_t> lidar;     // C_L (fused mode)
     std::vector<std::uint8_t> vertical;  // C_V (Triple-SGM)
+    std::vector<std::uint8_t> costRow;   // C of the row being costed, whole range (packed cost volume)
     std::vector<std::uint16_t> total;      // S of one pixel (the selection needs no more)
     std::vector<std::uint64_t> leftCensus;   // the left census of the row being costed
     std::vector<std::uint64_t> rightCensus;  // ... the right one
@@ -102,6 +108,8 @@ class CpuMatcher final : public MatcherBackend {
   void lidarPixels(const Frame& frame);
   /// The gated search's windows (lidarSearchWindows, rows split among the threads).
   void searchWindows(const Frame& frame);
+  /// Where each pixel's window lies in the packed cost volume (costRowStart_, costOffsets_).
+  void packCostLayout(const Frame& frame);
   void runStages(const Frame& frame, ImageView<std::int16_t> disparity);
   /// Grows the buffers of the sweeps and the selection to the frame (kept between frames).
   void prepareBuffers(const Frame& frame);
@@ -131,13 +139,21 @@ class CpuMatcher final : public MatcherBackend {
   /// The pair's census of row y that pixels x0 .. x1-1 need, in the worker's row buffers
   /// (row_costs.cpp): the left census, the right one as planes.
   static void censusRows(const Frame& frame, int y, int x0, int x1, Worker& worker);
-  /// C of pixels x0 .. x1-1 of row y (costs.cpp).
-  void costRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* cost, Worker& worker);
+  /// C of pixels x0 .. x1-1 of row y (row_costs.cpp): into `cost` from pixel x0 on in the whole
+  /// range's layout, or (the census costs with windows.costOffset) packed from the row's start.
+  void costRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* cost, RowWindows windows, Worker& worker);
+  /// Whether costRange writes a packed row itself (else the row is packed after it).
+  static bool costsPackedInPlace(const Frame& frame);
   void lidarCostRange(const Frame& frame, int y, int x0, int x1, std::uint8_t* lidar);
   void tripleCostRange(const Frame& frame, int y, int x0, int x1, const std::uint8_t* lidar, std::uint8_t* cost,
                        Worker& worker, Lap& lap);
+  /// Pixels x0 .. x1-1 of a costed row into the packed cost volume (sweeps.cpp).
+  void packCostRow(const Frame& frame, int y, int x0, int x1, const std::uint8_t* row);
   /// Row y's search windows for the row kernels (none without the gated search).
   static RowWindows rowWindows(const Frame& frame, int y);
+  /// Row y of the cost volume, and its windows with where their costs lie in it.
+  std::uint8_t* costRow(const Frame& frame, int y);
+  RowWindows costWindows(const Frame& frame, int y) const;
   // After the sweeps (cpu_matcher.cpp).
   void leftRightCheck(const Frame& frame);
   /// The confidence and the inputs the core would compute (the facade's computeConfidence), from
@@ -147,6 +163,11 @@ class CpuMatcher final : public MatcherBackend {
   // Buffers kept between frames (resized only when the frame size changes).
   Image<std::uint64_t> upCensus_;
   HugeBuffer<std::uint8_t> cost_;        // C of every pixel, from the sweep up to the sweep down
+  // A gated frame's cost volume holds each pixel's window alone (a KITTI frame: 64 % of the whole
+  // range's bytes, written once and read twice): row y from costRowStart_[y], pixel x's window
+  // from costOffsets_[y * width + x] in its row.
+  std::vector<std::size_t> costRowStart_;
+  std::vector<std::uint32_t> costOffsets_;
   // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
   // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
   HugePageVector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)

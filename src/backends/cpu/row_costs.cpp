@@ -29,7 +29,8 @@ void CpuMatcher::censusRows(const Frame& f, int y, int x0, int x1, Worker& w) {
   censusPlanes(w.rightCensus.data(), W, f.planePad, xr0, xr1, w.rightPlanes.data(), f.planeStride);
 }
 
-void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* cost, Worker& w) {
+void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* cost, RowWindows windows,
+                           Worker& w) {
   const FramePlan& plan = f.plan;
   const Parameters& p = plan.params;
   Lap lap;
@@ -51,10 +52,10 @@ void CpuMatcher::costRange(const Frame& f, int y, int x0, int x1, std::uint8_t* 
     // With the gated search, only the windows' costs: nothing reads the others.
     censusCostFusedRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1,
                        plan.minDisparity, plan.D, lidar, touched_.view().row(y), weights, plan.alphaWeight,
-                       p.stereoCostWithoutLidar, cost, rowWindows(f, y));
+                       p.stereoCostWithoutLidar, cost, windows);
   } else {
     censusCostRow(leftRow, planes, f.planeStride, f.planePad, p.censusType, plan.width, x0, x1, plan.minDisparity,
-                  plan.D, cost, rowWindows(f, y));
+                  plan.D, cost, windows);
   }
   lap(w.censusCostMs);
 }

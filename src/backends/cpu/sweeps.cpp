@@ -4,6 +4,7 @@
 // the winners in the same visit of each pixel's S.
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_matcher.hpp"
@@ -31,6 +32,24 @@ constexpr Step kDownward[3] = {{0}, {1}, {-1}};  // (0,1), then with 8 paths (1,
 RowWindows CpuMatcher::rowWindows(const Frame& f, int y) {
   if (f.windows == nullptr) return {};
   return {f.windows->firstRow(y), f.windows->countRow(y)};
+}
+
+// Pixels x0 .. x1-1 of row y, costed in the whole range's layout (`row` from pixel x0), into the
+// packed volume: each pixel's window alone (a whole number of 16-byte vectors).
+void CpuMatcher::packCostRow(const Frame& f, int y, int x0, int x1, const std::uint8_t* row) {
+  const std::size_t D = static_cast<std::size_t>(f.plan.D);
+  const std::int16_t* first = f.windows->firstRow(y);
+  const std::int16_t* count = f.windows->countRow(y);
+  const std::uint32_t* offset = costOffsets_.data() + static_cast<std::size_t>(y) * f.plan.width;
+  std::uint8_t* packed = cost_.data() + costRowStart_[static_cast<std::size_t>(y)];
+  for (int x = x0; x < x1; ++x) {
+    std::memcpy(packed + offset[x], row + static_cast<std::size_t>(x - x0) * D + first[x],
+                static_cast<std::size_t>(count[x]));
+  }
+}
+
+bool CpuMatcher::costsPackedInPlace(const Frame& f) {
+  return f.plan.useCameras() && !f.plan.upCamera();
 }
 
 void CpuMatcher::aggregateAndSelect(const Frame& f) {
@@ -72,15 +91,22 @@ void CpuMatcher::sweepUp(const Frame& f) {
     Worker& w = workers_[static_cast<std::size_t>(t)];
     for (int i = 0; i < H; ++i) {
       const int y = H - 1 - i;
-      std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
-      costRange(f, y, x0, x1, cost + static_cast<std::size_t>(x0) * D, w);
+      // The row's costs: into the volume (the census costs of a gated frame packed in place), or
+      // in the whole range's layout into the worker's row, packed into the volume after the
+      // upward paths (the LiDAR-only and Triple-SGM costs of a gated frame).
+      const bool inPlace = !f.packedCost || costsPackedInPlace(f);
+      std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
+      const int rowX0 = inPlace ? 0 : x0;
+      const RowWindows windows = inPlace ? costWindows(f, y) : rowWindows(f, y);
+      costRange(f, y, x0, x1, f.packedCost && inPlace ? row : row + static_cast<std::size_t>(x0 - rowX0) * D, windows,
+                w);
       for (int k = 0; k < f.verticalPaths; ++k) {
         PathT* current = as<PathT>(pathRows_, (2 * k + i % 2) * rowSlots);
         const PathT* previous = i == 0 ? nullptr : as<PathT>(pathRows_, (2 * k + (i + 1) % 2) * rowSlots);
         std::uint16_t* currentMin = pathMins_.data() + static_cast<std::size_t>(2 * k + i % 2) * W;
         const std::uint16_t* previousMin = pathMins_.data() + static_cast<std::size_t>(2 * k + (i + 1) % 2) * W;
-        pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2, current,
-                            currentMin, rowWindows(f, y));
+        pathRowFromPrevious(row, rowX0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2, current,
+                            currentMin, windows);
         // The first row of every chunk but the top one: the sweep down restarts the upward paths
         // of the chunk above from here.
         if (y > 0 && y % kChunkRows == 0) {
@@ -89,6 +115,7 @@ void CpuMatcher::sweepUp(const Frame& f) {
           std::copy(currentMin + x0, currentMin + x1, checkpointMins_.data() + c * W + x0);
         }
       }
+      if (!inPlace) packCostRow(f, y, x0, x1, row);
       // Diagonal paths read the neighbouring columns of the previous row: wait for them.
       if (f.verticalPaths > 1) {
 #pragma omp barrier
@@ -154,7 +181,8 @@ void CpuMatcher::upwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
   const int parity = chunk % 2;
   for (int r = rows - 1; r >= 0; --r) {
     const int y = yBegin + r;
-    const std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
+    const std::uint8_t* cost = costRow(f, y);
+    const RowWindows windows = costWindows(f, y);
     for (int k = 0; k < vp; ++k) {
       const std::size_t c = static_cast<std::size_t>(chunk) * vp + k;
       const PathT* previous = y == H - 1        ? nullptr
@@ -163,7 +191,7 @@ void CpuMatcher::upwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
       const std::uint16_t* previousMin =
           r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(f, parity, vp + k, r + 1);
       pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                          chunkPath<PathT>(f, parity, vp + k, r), chunkMin(f, parity, vp + k, r), rowWindows(f, y));
+                          chunkPath<PathT>(f, parity, vp + k, r), chunkMin(f, parity, vp + k, r), windows);
     }
     if (vp > 1) {
 #pragma omp barrier
@@ -184,7 +212,8 @@ void CpuMatcher::downwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1)
   const int parity = chunk % 2;
   for (int r = 0; r < rows; ++r) {
     const int y = yBegin + r;
-    const std::uint8_t* cost = cost_.data() + static_cast<std::size_t>(y) * W * D;
+    const std::uint8_t* cost = costRow(f, y);
+    const RowWindows windows = costWindows(f, y);
     for (int k = 0; k < vp; ++k) {
       const PathT* previous = y == 0   ? nullptr
                               : r == 0 ? chunkPath<PathT>(f, 1 - parity, k, kChunkRows - 1)
@@ -192,7 +221,7 @@ void CpuMatcher::downwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1)
       const std::uint16_t* previousMin =
           r == 0 ? chunkMin(f, 1 - parity, k, kChunkRows - 1) : chunkMin(f, parity, k, r - 1);
       pathRowFromPrevious(cost, 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                          chunkPath<PathT>(f, parity, k, r), chunkMin(f, parity, k, r), rowWindows(f, y));
+                          chunkPath<PathT>(f, parity, k, r), chunkMin(f, parity, k, r), windows);
     }
     if (vp > 1) {
 #pragma omp barrier
@@ -217,8 +246,7 @@ void CpuMatcher::selectChunkRows(const Frame& f, int chunk, int r0, int r1, Work
   for (int r = r0; r < r1; ++r) {
     const int y = chunk * kChunkRows + r;
     const RowWindows windows = rowWindows(f, y);
-    pathRowsHorizontal(cost_.data() + static_cast<std::size_t>(y) * W * D, W, D, p.P1, p.P2, rightward, leftward,
-                       windows);
+    pathRowsHorizontal(costRow(f, y), W, D, p.P1, p.P2, rightward, leftward, costWindows(f, y));
     int count = 0;
     for (int k = 0; k < f.verticalPaths; ++k) {
       paths[count++] = chunkPath<PathT>(f, parity, k, r);
