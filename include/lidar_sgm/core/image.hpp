@@ -47,7 +47,7 @@ class Image {
 
   int width() const { return width_; }
   int height() const { return height_; }
-  bool empty() const { return pixels_.empty(); }
+  bool empty() const { return width_ <= 0 || height_ <= 0 || pixels_.empty(); }
   T* data() { return pixels_.data(); }
   const T* data() const { return pixels_.data(); }
   T& operator()(int x, int y) { return pixels_[static_cast<std::size_t>(y) * width_ + x]; }
@@ -56,15 +56,23 @@ class Image {
   ImageView<T> view() { return ImageView<T>(pixels_.data(), width_, height_, width_); }
   ImageView<const T> view() const { return ImageView<const T>(pixels_.data(), width_, height_, width_); }
 
-  /// Reallocates only when the size changes (buffers are reused between frames).
+  /// The pixels are kept up to the largest size seen (buffers are reused between frames): a
+  /// buffer that alternates between two sizes (the Densifier's matcher runs the half-scale
+  /// witness, then the frame) is neither reallocated nor cleared. New pixels are zero only
+  /// the first time the buffer grows to them; otherwise the contents are undefined.
   void resize(int width, int height) {
     width_ = width;
     height_ = height;
-    pixels_.resize(static_cast<std::size_t>(width) * height);
+    const std::size_t n = static_cast<std::size_t>(width) * height;
+    if (pixels_.size() < n) pixels_.resize(n);
   }
-  void fill(T value) { std::fill(pixels_.begin(), pixels_.end(), value); }
+  void fill(T value) { std::fill(pixels_.begin(), pixels_.begin() + static_cast<std::ptrdiff_t>(pixelCount()), value); }
 
  private:
+  std::size_t pixelCount() const {
+    return width_ <= 0 || height_ <= 0 ? 0 : static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  }
+
   int width_ = 0;
   int height_ = 0;
   HugePageVector<T> pixels_;  // a frame-sized image lies on huge pages (huge_page_allocator.hpp)
