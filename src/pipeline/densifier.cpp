@@ -200,8 +200,8 @@ void Densifier::match(const LidarPoints* lidar) {
   pairOrientation_ = PairOrientation();
   if (config_.pairCheck && !left.empty()) {
     pairOrientation_ = useLidar ? passes_->pairOrientationFromLidar(left, right, projected_.samples)
-                                : pairOrientationFromStereo(left, right, usedParams_.minDisparity,
-                                                            usedParams_.numDisparities);
+                                : passes_->pairOrientationFromStereo(left, right, usedParams_.minDisparity,
+                                                                     usedParams_.numDisparities);
     if (pairOrientation_.looksSwapped()) throw std::invalid_argument(swappedPairMessage(pairOrientation_));
   }
   // The points the camera sees a nearer surface in front of (hidden_lidar.hpp), then those the

@@ -83,25 +83,38 @@ PairOrientation pairOrientationFromLidar(const GrayImageView& leftView, const Gr
   return votes;
 }
 
-PairOrientation pairOrientationFromStereo(const GrayImageView& leftView, const GrayImageView& rightView,
-                                          int minDisparity, int numDisparities) {
-  PairOrientation votes;
-  if (!usable(leftView, rightView)) return votes;
+StereoGrid stereoGrid(const GrayImageView& leftView, int minDisparity, int numDisparities) {
+  StereoGrid grid;
+  const Gray left(leftView);
+  grid.width = left.width();
+  grid.height = left.height();
+  grid.dMin = std::max(minDisparity, 1);
+  grid.dMax = minDisparity + numDisparities - 1;
+  grid.stepX = std::max(1, grid.width / kGridColumns);
+  grid.stepY = std::max(1, grid.height / kGridRows);
+  grid.firstY = std::max(kRadius, grid.stepY / 2);
+  const int lastY = grid.height - kRadius;  // exclusive
+  grid.rows = lastY > grid.firstY ? (lastY - grid.firstY + grid.stepY - 1) / grid.stepY : 0;
+  return grid;
+}
+
+void voteAtGridRows(const GrayImageView& leftView, const GrayImageView& rightView, const StereoGrid& grid, int begin,
+                    int end, PairOrientation& votes, StereoGridScratch& scratch) {
   const Gray left(leftView);
   const Gray right(rightView);
-  const int width = left.width();
-  const int dMin = std::max(minDisparity, 1);
-  const int dMax = minDisparity + numDisparities - 1;
-  const int stepX = std::max(1, width / kGridColumns);
-  const int stepY = std::max(1, left.height() / kGridRows);
+  const int width = grid.width;
   constexpr int kSide = 2 * kRadius + 1;
   // Per grid row, the right image's 7 rows and each column's patch mean, read once: a pixel
   // then costs 2 x numDisparities patch differences (~2 ms on a KITTI frame for 128).
-  std::vector<float> rows(static_cast<std::size_t>(kSide) * width);
-  std::vector<float> rightMean(static_cast<std::size_t>(width));
-  std::vector<float> columnSum(static_cast<std::size_t>(width));
+  std::vector<float>& rows = scratch.rows;
+  std::vector<float>& rightMean = scratch.rightMean;
+  std::vector<float>& columnSum = scratch.columnSum;
+  rows.resize(static_cast<std::size_t>(kSide) * width);
+  rightMean.resize(static_cast<std::size_t>(width));
+  columnSum.resize(static_cast<std::size_t>(width));
   std::array<float, kSide * kSide> patch{};
-  for (int y = std::max(kRadius, stepY / 2); y < left.height() - kRadius; y += stepY) {
+  for (int row = begin; row < end; ++row) {
+    const int y = grid.firstY + row * grid.stepY;
     std::fill(columnSum.begin(), columnSum.end(), 0.0f);
     for (int j = 0; j < kSide; ++j) {
       for (int x = 0; x < width; ++x) {
@@ -119,12 +132,12 @@ PairOrientation pairOrientationFromStereo(const GrayImageView& leftView, const G
       float sad = 0.0f;
       const float mean = rightMean[static_cast<std::size_t>(xr)];
       for (int j = 0; j < kSide; ++j) {
-        const float* row = &rows[static_cast<std::size_t>(j) * width + xr - kRadius];
-        for (int i = 0; i < kSide; ++i) sad += std::abs(patch[static_cast<std::size_t>(j * kSide + i)] - (row[i] - mean));
+        const float* r = &rows[static_cast<std::size_t>(j) * width + xr - kRadius];
+        for (int i = 0; i < kSide; ++i) sad += std::abs(patch[static_cast<std::size_t>(j * kSide + i)] - (r[i] - mean));
       }
       return sad;
     };
-    for (int x = std::max(kRadius, stepX / 2); x < width - kRadius; x += stepX) {
+    for (int x = std::max(kRadius, grid.stepX / 2); x < width - kRadius; x += grid.stepX) {
       const double leftMean = patchMean(left, x, y);
       if (patchTexture(left, x, y, leftMean) < left.flatness()) continue;
       const float mean = static_cast<float>(leftMean);
@@ -137,13 +150,22 @@ PairOrientation pairOrientationFromStereo(const GrayImageView& leftView, const G
       // The same disparities both ways, so that neither side has more chances.
       float bestGiven = std::numeric_limits<float>::max();
       float bestSwapped = std::numeric_limits<float>::max();
-      for (int d = dMin; d <= dMax && x - d >= kRadius && x + d < width - kRadius; ++d) {
+      for (int d = grid.dMin; d <= grid.dMax && x - d >= kRadius && x + d < width - kRadius; ++d) {
         bestGiven = std::min(bestGiven, cost(x - d));
         bestSwapped = std::min(bestSwapped, cost(x + d));
       }
       if (bestGiven != std::numeric_limits<float>::max()) vote(votes, bestGiven, bestSwapped);
     }
   }
+}
+
+PairOrientation pairOrientationFromStereo(const GrayImageView& leftView, const GrayImageView& rightView,
+                                          int minDisparity, int numDisparities) {
+  PairOrientation votes;
+  if (!usable(leftView, rightView)) return votes;
+  const StereoGrid grid = stereoGrid(leftView, minDisparity, numDisparities);
+  StereoGridScratch scratch;
+  voteAtGridRows(leftView, rightView, grid, 0, grid.rows, votes, scratch);
   return votes;
 }
 

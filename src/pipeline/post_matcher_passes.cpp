@@ -51,6 +51,14 @@ PairOrientation PostMatcherPasses::pairOrientationFromLidar(const GrayImageView&
   return lidar_sgm::pairOrientationFromLidar(left, right, lidar);
 }
 
+PairOrientation PostMatcherPasses::pairOrientationFromStereo(const GrayImageView& left, const GrayImageView& right,
+                                                            int minDisparity, int numDisparities) {
+#ifdef LIDAR_SGM_HAVE_FAST_PASSES
+  if (fast_) return fast::pairOrientationFromStereo(left, right, minDisparity, numDisparities, *buffers_, threads_);
+#endif
+  return lidar_sgm::pairOrientationFromStereo(left, right, minDisparity, numDisparities);
+}
+
 OutputFilterStats PostMatcherPasses::applyOutputFilters(ImageView<std::int16_t> disparity16,
                                                         const std::vector<LidarSample>& samples,
                                                         const GrayImageView& left, const OutputFilterOptions& options) {

@@ -42,9 +42,11 @@ class PostMatcherPasses {
   /// geometry::project into `out` (whose vectors keep their capacity on the fast path).
   void project(const std::vector<Eigen::Vector3f>& pointsLidar, const geometry::StereoCalibration& calibration,
                const geometry::ProjectionOptions& options, geometry::ProjectedLidar& out);
-  /// pairOrientationFromLidar (pair_orientation.hpp).
+  /// pairOrientationFromLidar and pairOrientationFromStereo (pair_orientation.hpp).
   PairOrientation pairOrientationFromLidar(const GrayImageView& left, const GrayImageView& right,
                                            const std::vector<LidarSample>& lidar);
+  PairOrientation pairOrientationFromStereo(const GrayImageView& left, const GrayImageView& right, int minDisparity,
+                                            int numDisparities);
   /// Sky first (it removes whole runs from the top of a column), then the isolated points, some
   /// of which the sky removal leaves behind at the border of the removed region.
   OutputFilterStats applyOutputFilters(ImageView<std::int16_t> disparity16, const std::vector<LidarSample>& samples,

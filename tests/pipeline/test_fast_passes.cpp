@@ -443,6 +443,37 @@ TEST_P(FastPasses, PairOrientationFromLidarIsTheSpecifications) {
   }
 }
 
+TEST_P(FastPasses, PairOrientationFromStereoIsTheSpecifications) {
+  fast::FastPassBuffers buffers;
+  // Tiny images (no grid row fits), odd sizes, a textured pair and a flat one; ranges that leave
+  // no disparity inside the image and ranges from below zero.
+  for (const Size s : {Size{5, 4, 5}, Size{64, 40, 64}, Size{301, 83, 301}, Size{631, 79, 631}}) {
+    const test::SyntheticStereo stereo =
+        test::makeStereo(s.width, s.height, [](double x, double) { return 5.0 + 0.02 * x; });
+    const Image<std::uint8_t> flat(s.width, s.height, 90);
+    for (const int minDisparity : {-3, 0, 2}) {
+      for (const int numDisparities : {16, 48}) {
+        for (const bool swapped : {false, true}) {
+          for (const bool textured : {true, false}) {
+            const GrayImageView left(textured ? (swapped ? stereo.right.view() : stereo.left.view()) : flat.view());
+            const GrayImageView right(swapped ? stereo.left.view() : stereo.right.view());
+            const PairOrientation expected = pairOrientationFromStereo(left, right, minDisparity, numDisparities);
+            const PairOrientation actual =
+                fast::pairOrientationFromStereo(left, right, minDisparity, numDisparities, buffers, threads());
+            EXPECT_FALSE(actual.fromLidar);
+            EXPECT_EQ(actual.tested, expected.tested) << s.width << "x" << s.height;
+            EXPECT_EQ(actual.givenWins, expected.givenWins) << s.width << "x" << s.height;
+            EXPECT_EQ(actual.swappedWins, expected.swappedWins) << s.width << "x" << s.height;
+            if (s.width == 631 && textured && minDisparity == 0 && numDisparities == 16) {
+              EXPECT_EQ(actual.looksSwapped(), swapped) << "the scene must decide both ways";
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 #endif  // LIDAR_SGM_HAVE_FAST_PASSES
 
 // ---- the Densifier: cpu_ref runs the specification, the fast backend the fast passes -----------

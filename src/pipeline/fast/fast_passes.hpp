@@ -2,7 +2,8 @@
 // The passes after the matcher, fast: vectorised where the arithmetic allows (Highway, the
 // instruction set chosen at run time) and split among threads by fixed row ranges. Each function
 // has the name and the result of its specification, bit for bit and for any thread count:
-// geometry::project (projection.cpp), pairOrientationFromLidar (pair_orientation.cpp), removeSky (sky_mask.cpp), removeOutliers (outlier_filter.cpp), the Densifier's confidence of the
+// geometry::project (projection.cpp), pairOrientationFromLidar and pairOrientationFromStereo
+// (pair_orientation.cpp), removeSky (sky_mask.cpp), removeOutliers (outlier_filter.cpp), the Densifier's confidence of the
 // valid pixels and applyMinConfidence (min_confidence.cpp), anchorToLidar (lidar_anchor.cpp),
 // geometry::depthImage and geometry::reproject (reprojection.cpp). Their buffers live in
 // FastPassBuffers, kept between frames: after the first frame of a size nothing is allocated.
@@ -24,6 +25,7 @@
 #include "lidar_sgm/pipeline/sky_mask.hpp"
 #include "pipeline/fast/depth_table.hpp"
 #include "pipeline/lidar_anchor_rows.hpp"
+#include "pipeline/pair_orientation_votes.hpp"
 
 namespace lidar_sgm {
 namespace fast {
@@ -44,8 +46,9 @@ struct ProjectionRanges {
 struct FastPassBuffers {
   // project: the ranges' candidates and samples, the nearest image.
   ProjectionRanges projection;
-  // pairOrientationFromLidar: each range's votes.
+  // pairOrientationFromLidar and ...FromStereo: each range's votes; the stereo grid's rows.
   std::vector<PairOrientation> pairVotes;
+  std::vector<StereoGridScratch> stereoGridScratch;
   // removeOutliers: the input disparity with `radius` invalid columns on each side.
   std::vector<std::int16_t> paddedDisparity;
   // removeSky: per column, and per pixel of the rows that hold candidates.
@@ -75,6 +78,10 @@ void project(const std::vector<Eigen::Vector3f>& pointsLidar, const geometry::St
 PairOrientation pairOrientationFromLidar(const GrayImageView& left, const GrayImageView& right,
                                          const std::vector<LidarSample>& lidar, FastPassBuffers& buffers,
                                          int threads);
+
+/// pairOrientationFromStereo's votes (pair_orientation.hpp).
+PairOrientation pairOrientationFromStereo(const GrayImageView& left, const GrayImageView& right, int minDisparity,
+                                          int numDisparities, FastPassBuffers& buffers, int threads);
 
 /// removeSky's result (sky_mask.hpp), also the option checks and their messages.
 std::size_t removeSky(ImageView<std::int16_t> disparity16, const std::vector<LidarSample>& samples,
