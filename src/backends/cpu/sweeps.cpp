@@ -96,10 +96,11 @@ void CpuMatcher::sweepUp(const Frame& f) {
       // upward paths (the LiDAR-only and Triple-SGM costs of a gated frame).
       const bool inPlace = !f.packedCost || costsPackedInPlace(f);
       std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
-      const int rowX0 = inPlace ? 0 : x0;
+      const int rowX0 = inPlace ? 0 : x0;  // the pixel of `row`'s first costs in the whole range's layout
       const RowWindows windows = inPlace ? costWindows(f, y) : rowWindows(f, y);
-      costRange(f, y, x0, x1, f.packedCost && inPlace ? row : row + static_cast<std::size_t>(x0 - rowX0) * D, windows,
-                w);
+      // costRange writes a packed row from its start (windows.costOffset), any other from pixel x0.
+      std::uint8_t* costOut = windows.costOffset != nullptr ? row : row + static_cast<std::size_t>(x0 - rowX0) * D;
+      costRange(f, y, x0, x1, costOut, windows, w);
       for (int k = 0; k < f.verticalPaths; ++k) {
         PathT* current = as<PathT>(pathRows_, (2 * k + i % 2) * rowSlots);
         const PathT* previous = i == 0 ? nullptr : as<PathT>(pathRows_, (2 * k + (i + 1) % 2) * rowSlots);
