@@ -40,11 +40,11 @@ inline int logit256(const ConfidenceModel& model, const ConfidencePixel& p) {
 /// The logistic curve in steps of 1/64 logit, entry i at logit (i - 1024) / 64 (2048 entries).
 const std::uint8_t* sigmoidTable();
 
+/// The entry of sigmoidTable() for z: floor division by 4 (1/256 -> 1/64 logit), also for negative z.
+inline int tableIndex(int logit256) { return (std::clamp(logit256, -4096, 4095) >> 2) + 1024; }
+
 /// confidenceFromLogit256, with `table` = sigmoidTable().
-inline std::uint8_t fromLogit256(const std::uint8_t* table, int logit256) {
-  // Floor division by 4 (1/256 -> 1/64 logit), also for negative z.
-  return table[(std::clamp(logit256, -4096, 4095) >> 2) + 1024];
-}
+inline std::uint8_t fromLogit256(const std::uint8_t* table, int logit256) { return table[tableIndex(logit256)]; }
 
 }  // namespace inline_model
 }  // namespace lidar_sgm

@@ -119,6 +119,14 @@ void occupiedRows(ImageView<const std::int16_t> nearest, int y0, int y1, std::ui
   }
 }
 
+void keepAll(const std::vector<ProjectionCandidate>& candidates, std::vector<LidarSample>& samples,
+             std::vector<std::size_t>& sourceIndex) {
+  for (const ProjectionCandidate& c : candidates) {
+    samples.push_back({c.x, c.y, c.disparity16});
+    sourceIndex.push_back(c.source);
+  }
+}
+
 std::size_t keepUnoccluded(const std::vector<ProjectionCandidate>& candidates, std::size_t begin, std::size_t end,
                            ImageView<const std::int16_t> nearest, const std::uint8_t* occupied,
                            const OcclusionFilter& filter, std::vector<LidarSample>& samples,
@@ -189,10 +197,7 @@ ProjectedLidar project(const std::vector<Eigen::Vector3f>& pointsLidar, const St
     out.stats.occluded = keepUnoccluded(candidates, 0, candidates.size(), nearest.view(), occupied.data(), filter,
                                         out.samples, out.sourceIndex);
   } else {
-    for (const ProjectionCandidate& c : candidates) {
-      out.samples.push_back({c.x, c.y, c.disparity16});
-      out.sourceIndex.push_back(c.source);
-    }
+    keepAll(candidates, out.samples, out.sourceIndex);
   }
   out.stats.kept = out.samples.size();
   return out;

@@ -55,6 +55,10 @@ void markNearest(const std::vector<ProjectionCandidate>& candidates, ImageView<s
 /// those rows: between a scan's lines (3-6 rows apart on KITTI's images) whole rows hold none.
 void occupiedRows(ImageView<const std::int16_t> nearest, int y0, int y1, std::uint8_t* occupied);
 
+/// Every candidate of `candidates`, appended in order to `samples` and `sourceIndex` (the filter off).
+void keepAll(const std::vector<ProjectionCandidate>& candidates, std::vector<LidarSample>& samples,
+             std::vector<std::size_t>& sourceIndex);
+
 /// Candidates [begin, end) that the occlusion filter keeps, appended in order to `samples` and
 /// `sourceIndex`; returns how many it dropped. `nearest` and `occupied` as set above.
 std::size_t keepUnoccluded(const std::vector<ProjectionCandidate>& candidates, std::size_t begin, std::size_t end,

@@ -112,5 +112,25 @@ TEST(HugePages, ReserveOnHugePagesAdvisesAnotherAllocatorsBlock) {
   EXPECT_TRUE(advised(firstPage)) << vmFlagsAt(firstPage);
 }
 
+// A frame's buffer alternating between two sizes (the Densifier's matcher: the half-scale witness,
+// then the frame) keeps its pixels: neither reallocated nor cleared when it grows back; its views,
+// fill and emptiness follow the size asked for.
+TEST(HugePages, AnImageThatShrinksAndGrowsBackKeepsItsPixels) {
+  Image<std::int16_t> image(1242, 375, 7);
+  const std::int16_t* pixels = image.data();
+  image.resize(621, 188);
+  EXPECT_EQ(image.view().width, 621);
+  EXPECT_EQ(image.view().height, 188);
+  image.fill(3);
+  image.resize(1242, 375);
+  EXPECT_EQ(image.data(), pixels);
+  EXPECT_EQ(image(0, 0), 3);
+  EXPECT_EQ(image(1241, 374), 7) << "the pixels beyond the smaller size were cleared";
+  image.resize(0, 0);
+  EXPECT_TRUE(image.empty());
+  image.resize(2, 2);
+  EXPECT_FALSE(image.empty());
+}
+
 }  // namespace
 }  // namespace lidar_sgm

@@ -189,10 +189,10 @@ void windowRows(std::vector<T>& buffer, int width, int height, int y, const T* r
 // ---- the combination ----------------------------------------------------------------------------
 
 // The core's per-pixel model (confidencePixel, confidenceLogit256, confidenceFromLogit256 in
-// core/confidence_pixel.hpp), the same integers a row at a time: z of a block of pixels from the
-// inputs' rows in a loop the compiler vectorises (8- and 16-bit loads, 32-bit products and sums,
-// which cannot overflow: |z| < 2^24), then the sigmoid table's entry per pixel. kPaths > 0: the
-// path count as a constant (c = S1 / paths a shift); kLidarOnly: r, t and s read as 0.
+// core/confidence_pixel.hpp, inline: the one formula) a row at a time: z of a block of pixels from
+// the inputs' rows in a loop the compiler vectorises (8- and 16-bit loads, 32-bit products and
+// sums), then the sigmoid table's entry per pixel. kPaths > 0: the path count as a constant (c =
+// S1 / paths a shift); kLidarOnly: r, t and s read as 0, as confidencePixel reads them.
 template <int kPaths, bool kLidarOnly>
 void combineRowOf(const ConfidenceInputs& inputs, const ConfidenceModel& model, int paths, const std::int16_t* d,
                   int width, int y, std::uint8_t* out) {
@@ -212,22 +212,15 @@ void combineRowOf(const ConfidenceInputs& inputs, const ConfidenceModel& model, 
     const int n = std::min(kBlock, width - x0);
     for (int i = 0; i < n; ++i) {
       const int x = x0 + i;
-      const int mg = margin[x];
-      const int cost = std::min(static_cast<int>(bestCost[x]) / divisor, 255);
-      const int g = lidarDistance[x];
-      const int v = range[x];
-      int z = m.bias + m.margin * mg + m.marginLow * std::min(mg, 16) + m.cost * cost + m.lidarDistance * g +
-              m.lidarDistanceLow * std::min(g, 4) + m.disparityRange * v + m.disparityRangeLow * std::min(v, 2);
-      if constexpr (!kLidarOnly) {
-        const int lr = leftRight[x];
-        const int noCounterpart = lr == kNoCounterpartDifference ? 1 : 0;
-        const int r = noCounterpart != 0 ? 0 : std::min(lr, kLeftRightDifferenceCap);
-        const int t = texture[x];
-        z += m.leftRight * r + m.noCounterpart * noCounterpart + m.texture * t + m.textureLow * std::min(t, 8) +
-             m.saturated * saturated[x];
-      }
-      // confidenceFromLogit256's index: floor division by 4, also for negative z.
-      index[i] = (std::clamp(z, -4096, 4095) >> 2) + 1024;
+      ConfidencePixel p;
+      p.margin = margin[x];
+      p.cost = std::min(static_cast<int>(bestCost[x]) / divisor, 255);
+      p.leftRight = kLidarOnly ? 0 : leftRight[x];
+      p.lidarDistance = lidarDistance[x];
+      p.texture = kLidarOnly ? 0 : texture[x];
+      p.saturated = kLidarOnly ? 0 : saturated[x];
+      p.disparityRange = range[x];
+      index[i] = inline_model::tableIndex(inline_model::logit256(m, p));
     }
     for (int i = 0; i < n; ++i) {
       out[x0 + i] = d[x0 + i] == kInvalidDisparity ? std::uint8_t{0} : sigmoid[index[i]];

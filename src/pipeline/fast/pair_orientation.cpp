@@ -10,6 +10,18 @@
 
 namespace lidar_sgm {
 namespace fast {
+namespace {
+
+/// The ranges' counts added into `votes`.
+void addVotes(const std::vector<PairOrientation>& perRange, PairOrientation& votes) {
+  for (const PairOrientation& range : perRange) {
+    votes.tested += range.tested;
+    votes.givenWins += range.givenWins;
+    votes.swappedWins += range.swappedWins;
+  }
+}
+
+}  // namespace
 
 PairOrientation pairOrientationFromLidar(const GrayImageView& left, const GrayImageView& right,
                                          const std::vector<LidarSample>& lidar, FastPassBuffers& buffers,
@@ -26,11 +38,7 @@ PairOrientation pairOrientationFromLidar(const GrayImageView& left, const GrayIm
     voteAtLidarSamples(left, right, lidar, static_cast<std::size_t>(begin), static_cast<std::size_t>(end), range);
     perRange[static_cast<std::size_t>(t)] = range;
   });
-  for (const PairOrientation& range : perRange) {
-    votes.tested += range.tested;
-    votes.givenWins += range.givenWins;
-    votes.swappedWins += range.swappedWins;
-  }
+  addVotes(perRange, votes);
   return votes;
 }
 
@@ -51,11 +59,7 @@ PairOrientation pairOrientationFromStereo(const GrayImageView& left, const GrayI
     perRange[static_cast<std::size_t>(t)] = range;
     buffers.stereoGridScratch[static_cast<std::size_t>(t)] = std::move(scratch);
   });
-  for (const PairOrientation& range : perRange) {
-    votes.tested += range.tested;
-    votes.givenWins += range.givenWins;
-    votes.swappedWins += range.swappedWins;
-  }
+  addVotes(perRange, votes);
   return votes;
 }
 

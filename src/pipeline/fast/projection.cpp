@@ -92,12 +92,7 @@ void project(const std::vector<Eigen::Vector3f>& pointsLidar, const geometry::St
   } else {
     out.samples.reserve(candidateCount);
     out.sourceIndex.reserve(candidateCount);
-    for (const auto& candidates : ranges.candidates) {
-      for (const geometry::ProjectionCandidate& c : candidates) {
-        out.samples.push_back({c.x, c.y, c.disparity16});
-        out.sourceIndex.push_back(c.source);
-      }
-    }
+    for (const auto& candidates : ranges.candidates) geometry::keepAll(candidates, out.samples, out.sourceIndex);
   }
   out.stats.kept = out.samples.size();
 }
