@@ -59,7 +59,6 @@ void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std
     searchWindows(f);
     f.windows = &windows_;
     packCostLayout(f);
-    f.packedCost = true;
   }
   out.timings.census = msSince(start);
   runStages(f, disparity);
@@ -169,13 +168,13 @@ void CpuMatcher::packCostLayout(const Frame& f) {
 }
 
 std::uint8_t* CpuMatcher::costRow(const Frame& f, int y) {
-  return cost_.data() + (f.packedCost ? costRowStart_[static_cast<std::size_t>(y)]
+  return cost_.data() + (f.windows != nullptr ? costRowStart_[static_cast<std::size_t>(y)]
                                       : static_cast<std::size_t>(y) * f.plan.width * f.plan.D);
 }
 
 RowWindows CpuMatcher::costWindows(const Frame& f, int y) const {
   RowWindows windows = rowWindows(f, y);
-  if (f.packedCost) windows.costOffset = costOffsets_.data() + static_cast<std::size_t>(y) * f.plan.width;
+  if (f.windows != nullptr) windows.costOffset = costOffsets_.data() + static_cast<std::size_t>(y) * f.plan.width;
   return windows;
 }
 
@@ -231,7 +230,7 @@ void CpuMatcher::prepareWorkers(const Frame& f, bool newLayout) {
   for (Worker& w : workers_) {
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);
-    if (f.packedCost && !costsPackedInPlace(f)) resizeKeep(w.costRow, partMax);
+    if (f.windows != nullptr && !costsPackedInPlace(f)) resizeKeep(w.costRow, partMax);
     if (plan.upCamera()) resizeKeep(w.vertical, partMax);
     resizeKeep(w.total, static_cast<std::size_t>(plan.D));
     if (plan.useCameras()) {

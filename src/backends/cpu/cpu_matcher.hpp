@@ -61,9 +61,8 @@ class CpuMatcher final : public MatcherBackend {
     GrayImageView right;  // the cost rows' right image (empty in LiDAR-only mode)
     const LidarPoints* lidar = nullptr;
     /// The gated search's windows (Parameters::gatedSearch); null: every pixel the whole range.
+    /// With them, the cost volume holds each pixel's window alone (packCostLayout).
     const SearchWindows* windows = nullptr;
-    /// With windows: the cost volume holds each pixel's window alone (packCostLayout).
-    bool packedCost = false;
     int threads = 1;
     int verticalPaths = 1;       // per sweep: 1 with 4 paths, 3 with 8
     bool paths8 = true;          // path costs in 8 bits (aggregation.cpp)

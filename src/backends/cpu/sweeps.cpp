@@ -94,7 +94,7 @@ void CpuMatcher::sweepUp(const Frame& f) {
       // The row's costs: into the volume (the census costs of a gated frame packed in place), or
       // in the whole range's layout into the worker's row, packed into the volume after the
       // upward paths (the LiDAR-only and Triple-SGM costs of a gated frame).
-      const bool inPlace = !f.packedCost || costsPackedInPlace(f);
+      const bool inPlace = f.windows == nullptr || costsPackedInPlace(f);
       std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
       const int rowX0 = inPlace ? 0 : x0;  // the pixel of `row`'s first costs in the whole range's layout
       const RowWindows windows = inPlace ? costWindows(f, y) : rowWindows(f, y);
