@@ -13,6 +13,7 @@
 #include "common/arguments.hpp"
 #include "common/help_layout.hpp"
 #include "common/help_version.hpp"
+#include "common/one_shot_allocator.hpp"
 #include "common/output_paths.hpp"
 #include "lidar_sgm/io/output_transaction.hpp"
 #include "common/timer.hpp"
@@ -281,7 +282,10 @@ int run(int argc, char** argv) {
                                "preview_color", "preview_size", "preview_height", "preview_behind", "preview_pitch",
                                "preview_ground"}),
                        lidar_sgm::apps::densifyFlagOptions());
-  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) return 0;
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_densify", [&] { printHelp(argv[0]); })) {
+    if (args.versionRequested()) std::printf("allocator: %s\n", lidar_sgm::apps::allocatorDescription().c_str());
+    return 0;
+  }
   const std::vector<std::string>& files = args.positionals();
   if (files.size() != 2) {
     throw std::invalid_argument("expected INPUT and OUTPUT, got " + std::to_string(files.size()) +

@@ -10,6 +10,7 @@
 #include "common/config_arguments.hpp"
 #include "common/help_layout.hpp"
 #include "common/help_version.hpp"
+#include "common/one_shot_allocator.hpp"
 #include "common/output_paths.hpp"
 #include "lidar_sgm/io/output_transaction.hpp"
 #include "common/timer.hpp"
@@ -76,7 +77,10 @@ int run(int argc, char** argv) {
                        joined(lidar_sgm::apps::configValueOptions(OptionScope::Disparity),
                               {"lidar", "lidar_depth", "fb", "color", "confidence"}),
                        lidar_sgm::apps::configFlagOptions(OptionScope::Disparity));
-  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_disparity", [&] { printHelp(argv[0]); })) return 0;
+  if (lidar_sgm::apps::answerHelpOrVersion(args, "lidar_sgm_disparity", [&] { printHelp(argv[0]); })) {
+    if (args.versionRequested()) std::printf("allocator: %s\n", lidar_sgm::apps::allocatorDescription().c_str());
+    return 0;
+  }
   const std::vector<std::string>& files = args.positionals();
   if (files.size() != 2 && files.size() != 3) {
     throw std::invalid_argument("expected LEFT.png [RIGHT.png] OUT.png, got " + std::to_string(files.size()) +

@@ -14,6 +14,7 @@ packages=(
   libhwy-dev                   # the fast cpu backend: SIMD with runtime dispatch (Highway)
   libpcl-dev                   # the PCL class, cloud files, lidar_sgm_densify
   liblzf-dev                   # io: binary_compressed PCD out (without PCL io and its VTK/OpenNI chain)
+  libjemalloc-dev              # the one-shot tools' allocator, on huge pages (apps/common/one_shot_allocator.cpp)
   nlohmann-json3-dev           # lidar_sgm_eval's JSON results
   libcli11-dev                 # the tools' and the bench's command lines (CLI11, header-only)
   libopen3d-dev                # lidar_sgm::open3d, densify() on Open3D clouds (0.16; optional: skipped without it)

@@ -98,12 +98,40 @@ TEST_P(ToolOptions, HelpWinsOverTheRestOfTheLine) {
   EXPECT_EQ(r.output.find("[done"), std::string::npos) << r.output;
 }
 
+/// The one-shot tools name their allocator in a second line of --version (one_shot_allocator.hpp).
+bool isOneShotTool(const std::string& name) { return name == "lidar_sgm_densify" || name == "lidar_sgm_disparity"; }
+
 TEST_P(ToolOptions, VersionPrintsTheToolAndTheLibraryVersion) {
   for (const char* version : {"--version", "-version"}) {
     const RunResult r = run(GetParam().path, version);
     EXPECT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(r.output, std::string(GetParam().name) + " " + LIDAR_SGM_VERSION_STRING + "\n");
+    const std::string first = std::string(GetParam().name) + " " + LIDAR_SGM_VERSION_STRING + "\n";
+    if (isOneShotTool(GetParam().name)) {
+      EXPECT_EQ(r.output.substr(0, first.size()), first);
+      EXPECT_EQ(r.output.find('\n', first.size()), r.output.size() - 1) << "one line more:\n" << r.output;
+      EXPECT_EQ(r.output.compare(first.size(), 11, "allocator: "), 0) << r.output;
+    } else {
+      EXPECT_EQ(r.output, first);
+    }
   }
+}
+
+// A one-shot process writes every buffer for the first time: on huge pages, through jemalloc,
+// where the build found it. The line is read from jemalloc itself at run time (its version, its
+// THP option, and whether malloc's blocks are counted by it), so it fails if the tool is linked
+// without jemalloc, if jemalloc does not read the tool's options, or if malloc is not jemalloc's.
+TEST(OneShotTools, AllocateThroughJemallocOnHugePages) {
+#ifndef LIDAR_SGM_TOOLS_WITH_JEMALLOC
+  GTEST_SKIP() << "the build found no jemalloc (Debian: libjemalloc-dev)";
+#else
+  for (const Tool& tool : builtTools()) {
+    if (!isOneShotTool(tool.name)) continue;
+    const RunResult r = run(tool.path, "--version");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("\nallocator: jemalloc 5."), std::string::npos) << tool.name << ":\n" << r.output;
+    EXPECT_NE(r.output.find(", transparent huge pages: always\n"), std::string::npos) << tool.name << ":\n" << r.output;
+  }
+#endif
 }
 
 TEST_P(ToolOptions, UnknownOptionExitsOneNamingIt) {
