@@ -1,12 +1,12 @@
 // Why a one-shot tool allocates through jemalloc on huge pages: a process that densifies one frame
 // writes every buffer for the first time, and each 4 KiB page costs a page fault when it is first
-// written. On the project's VM such a fault costs ~6.5 us (64 MiB written once: 225 ms on 4 KiB
+// written. On the project's VM that costs ~14 us a page (64 MiB written once: 225 ms on 4 KiB
 // pages, 6 ms on 2 MiB pages once the memory is the process's), and lidar_sgm_densify took ~12,500
-// of them on a KITTI frame. The frame's large buffers are already on huge pages (HugePageAllocator);
+// page faults on a KITTI frame. The frame's large buffers are already on huge pages (HugePageAllocator);
 // the rest (images below 1 MiB, the scan, the PNG rows, the PCL cloud, vectors of the passes) come
 // from malloc. jemalloc with `thp:always` puts all of its memory on huge pages and keeps freed
-// memory for the next block: ~2,100 faults, and the whole process about 0.1 s shorter
-// (BENCHMARK.md, "One scan end to end"). A sequence (lidar_sgm_batch) pays the faults once and
+// memory for the next block: ~2,100 faults, and the whole process 244 -> 137 ms (BENCHMARK.md,
+// "One scan end to end"). A sequence (lidar_sgm_batch) pays the faults once and
 // measured no gain, so it keeps the C library's malloc.
 #include "common/one_shot_allocator.hpp"
 
