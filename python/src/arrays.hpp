@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -12,6 +13,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/geometry/reprojection.hpp"
 
@@ -46,10 +48,36 @@ ImageView<const Rgb8> rgbView(const cv::Mat& rgb);
 // Outputs: arrays are made with the GIL held (newArray), then filled without it (copy*), so that
 // other Python threads run while a frame's ~12 MB of outputs are copied.
 
-/// A new, uninitialised rows x cols array.
+/// A new, uninitialised array of `shape` (1 or 2 dimensions). One of kHugePageThreshold bytes or
+/// more lies on transparent huge pages (allocateHugePages), which the array owns: every call's
+/// outputs are new memory, and on 4 KiB pages its first write costs a page fault per 4 KiB (on
+/// the project's VM ~14 us each: ~8 ms of a KITTI frame's ~7 MB of outputs; BENCHMARK.md, "The
+/// Python module's overhead").
+template <typename T>
+py::array_t<T> newArrayOfShape(const std::vector<py::ssize_t>& shape) {
+  std::size_t count = 1;
+  for (const py::ssize_t n : shape) count *= static_cast<std::size_t>(n);
+  const std::size_t bytes = count * sizeof(T);
+  if (bytes < kHugePageThreshold) return py::array_t<T>(shape);
+  struct Block {
+    void* data;
+    std::size_t bytes;
+    Block(const Block&) = delete;
+    Block& operator=(const Block&) = delete;
+    ~Block() { freeHugePages(data, bytes); }
+  };
+  // Allocated in place (a new-expression allocates before it evaluates its initializer, and frees
+  // again if the pages cannot be had).
+  std::unique_ptr<Block> block(new Block{allocateHugePages(bytes), bytes});
+  T* data = static_cast<T*>(block->data);
+  py::capsule owner(block.get(), [](void* p) { delete static_cast<Block*>(p); });
+  block.release();  // the capsule owns it now
+  return py::array_t<T>(shape, data, owner);
+}
+/// A new, uninitialised rows x cols array (newArrayOfShape).
 template <typename T>
 py::array_t<T> newArray(std::size_t rows, std::size_t cols) {
-  return py::array_t<T>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
+  return newArrayOfShape<T>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
 }
 /// x16 disparities (kInvalidDisparity) -> float [px], NaN where there is none, into `out`
 /// (width x height, row-major).

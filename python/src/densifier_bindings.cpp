@@ -71,7 +71,7 @@ DensifyResult resultOf(Densifier& densifier, bool colored) {
   py::array_t<float> depth = newArray<float>(static_cast<std::size_t>(densifier.depth().height()),
                                              static_cast<std::size_t>(densifier.depth().width()));
   py::array_t<std::uint8_t> confidence = newArray<std::uint8_t>(haveConfidence ? height : 0, haveConfidence ? width : 0);
-  py::array_t<float> pointConfidence(static_cast<py::ssize_t>(haveConfidence ? cloud->size() : 0));
+  py::array_t<float> pointConfidence = newArrayOfShape<float>({static_cast<py::ssize_t>(haveConfidence ? cloud->size() : 0)});
   std::uint8_t* colorsOut = colored ? colors.mutable_data() : nullptr;
   float* pointConfidenceOut = pointConfidence.mutable_data();
   float* disparityOut = disparity.mutable_data();

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
+#include "arrays.hpp"
 #include "errors.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
@@ -22,7 +23,7 @@ namespace {
 /// x, y, z, intensity per point: a pcl::PointXYZI cloud, or KITTI points read without PCL.
 template <typename Points>
 py::array_t<float> cloudArray(const Points& cloud) {
-  py::array_t<float> out({static_cast<py::ssize_t>(cloud.size()), py::ssize_t{4}});
+  py::array_t<float> out = newArray<float>(cloud.size(), 4);
   float* o = out.mutable_data();
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const auto& p = cloud[i];

@@ -37,7 +37,7 @@ py::tuple mapArrays(const VoxelMap& map) {
   const std::size_t n = points.size();
   auto xyz = newArray<float>(n, 3);
   auto rgb = newArray<std::uint8_t>(n, 3);
-  py::array_t<float> confidence(static_cast<py::ssize_t>(n));
+  py::array_t<float> confidence = newArrayOfShape<float>({static_cast<py::ssize_t>(n)});
   float* p = xyz.mutable_data();
   std::uint8_t* c = rgb.mutable_data();
   float* q = confidence.mutable_data();

@@ -121,3 +121,26 @@ def test_densifier_says_it_wants_a_calibration(argument):
     message = str(error.value)
     assert "lidar_sgm.Calibration" in message and "lidar_sgm.read_calibration(path)" in message, message
     assert type(argument).__name__ in message, message
+
+
+def test_large_outputs_lie_on_huge_pages_and_outlive_the_densifier(calibration, points, left, right):
+    """The outputs of 1 MiB or more are new memory on 2 MiB-aligned huge pages every call (their
+    first write would otherwise fault every 4 KiB page); each array owns its block, which stays
+    valid through the next frame and the Densifier's end."""
+    import gc
+    densifier = lidar_sgm.Densifier(calibration)
+    first = densifier.densify(points, left, right)
+    arrays = {name: getattr(first, name) for name in ("disparity", "depth", "colors", "point_confidence")}
+    kept = {name: np.array(array, copy=True) for name, array in arrays.items()}
+    for name, array in arrays.items():
+        assert array.nbytes >= 1 << 20, name  # a KITTI-size frame: each of these is a huge-page output
+        assert array.ctypes.data % (2 << 20) == 0, f"{name} is not on its own huge pages"
+        assert array.base is not None and array.flags.writeable and array.flags.c_contiguous, name
+    second = densifier.densify(points[::2], left, right)  # other contents in the next frame's arrays
+    assert not np.array_equal(second.disparity, first.disparity, equal_nan=True)
+    del densifier, second, first
+    gc.collect()
+    for name, array in arrays.items():
+        np.testing.assert_array_equal(array, kept[name], err_msg=name)
+    arrays["depth"][0, 0] = 1.5  # the memory is the array's to write
+    assert arrays["depth"][0, 0] == 1.5
