@@ -3,7 +3,9 @@
 Densifier::run inside the same call (its own timings: project + match + reproject), paired per
 call. The difference is everything the binding does: reading the points array, wrapping the
 images, the gray conversion and copies the C++ tool does too (setStereoPair, setColorImage), and
-copying the outputs into numpy arrays. Prints the median of the runs and the overhead in ms and %.
+copying the outputs into numpy arrays. Prints the median of the runs and the overhead in ms and %,
+and first the warm-up call's times: the first frame of the process, which pays the first touch of
+every buffer (run it in fresh processes to compare that).
 
     PYTHONPATH=build/python python3 bench/python_overhead.py [--runs 20] [--frame DIR NAME]
 """
@@ -28,7 +30,10 @@ def main():
     left = lidar_sgm.read_image(str(folder / "image_2" / f"{name}.png"))
     right = lidar_sgm.read_image(str(folder / "image_3" / f"{name}.png"))
     densifier = lidar_sgm.Densifier(lidar_sgm.read_calibration(str(folder / "calib" / f"{name}.txt")))
-    densifier.densify(points, left, right)  # warm-up: the matcher and its buffers
+    start = time.perf_counter()
+    first = densifier.densify(points, left, right)  # warm-up: the matcher and its buffers
+    print(f"first call: densify() {1000.0 * (time.perf_counter() - start):.1f} ms, "
+          f"Densifier::run {first.timings['total']:.1f} ms")
     walls, cores = [], []
     for _ in range(args.runs):
         start = time.perf_counter()

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "lidar_sgm/core/huge_page_allocator.hpp"
 #include "lidar_sgm/core/image.hpp"
 #include "lidar_sgm/core/lidar_points.hpp"
 
@@ -59,10 +60,11 @@ struct LidarAnchorOptions {
 /// Throws std::invalid_argument naming the field when `options` are out of range.
 void validate(const LidarAnchorOptions& options);
 
-/// The per-pixel sums, kept between frames by the caller.
+/// The per-pixel sums, kept between frames by the caller (8 bytes a pixel each: on huge pages,
+/// as every large buffer of a frame, huge_page_allocator.hpp).
 struct LidarAnchorBuffers {
-  std::vector<std::int64_t> weightedResidual;  ///< sum of w * r (w in 1/1024, r in x16 units), per pixel
-  std::vector<std::int64_t> weight;            ///< sum of w
+  HugePageVector<std::int64_t> weightedResidual;  ///< sum of w * r (w in 1/1024, r in x16 units), per pixel
+  HugePageVector<std::int64_t> weight;            ///< sum of w
 };
 
 /// Adds to each valid pixel of `disparity16` (x16, kInvalidDisparity where none) at most

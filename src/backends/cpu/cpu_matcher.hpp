@@ -166,7 +166,7 @@ class CpuMatcher final : public MatcherBackend {
   // range's bytes, written once and read twice): row y from costRowStart_[y], pixel x's window
   // from costOffsets_[y * width + x] in its row.
   std::vector<std::size_t> costRowStart_;
-  std::vector<std::uint32_t> costOffsets_;
+  HugePageVector<std::uint32_t> costOffsets_;  // 4 bytes a pixel: on huge pages, as the volume
   // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
   // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
   HugePageVector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
