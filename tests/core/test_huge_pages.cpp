@@ -62,20 +62,21 @@ TEST(HugePages, LargeBlocksAreAlignedAndAdvisedSmallOnesAreNot) {
   EXPECT_FALSE(advised(beside.data())) << vmFlagsAt(beside.data());
 }
 
-TEST(HugePages, ALastPageLessThanHalfUsedKeepsSmallPages) {
-  // Two whole pages and a quarter: the quarter would leave 1.5 MiB of a huge page unused.
-  HugePageVector<std::uint8_t> quarter(2 * kHugePageSize + kHugePageSize / 4, 1);
-  // Two whole pages and three quarters: the last page is mostly data, so huge too.
-  HugePageVector<std::uint8_t> threeQuarters(2 * kHugePageSize + 3 * kHugePageSize / 4, 2);
-  ASSERT_TRUE(alignedToHugePage(quarter.data()));
-  ASSERT_TRUE(alignedToHugePage(threeQuarters.data()));
-  EXPECT_EQ(quarter.back(), 1);
-  EXPECT_EQ(threeQuarters.back(), 2);
+TEST(HugePages, ALastPageLessThanAQuarterUsedKeepsSmallPages) {
+  // Two whole pages and an eighth: the eighth would leave 1.75 MiB of a huge page unused.
+  HugePageVector<std::uint8_t> eighth(2 * kHugePageSize + kHugePageSize / 8, 1);
+  // Two whole pages and three eighths: the last page's 0.75 MiB cost 192 small-page faults, more
+  // than the huge page's one fault and clearing.
+  HugePageVector<std::uint8_t> threeEighths(2 * kHugePageSize + 3 * kHugePageSize / 8, 2);
+  ASSERT_TRUE(alignedToHugePage(eighth.data()));
+  ASSERT_TRUE(alignedToHugePage(threeEighths.data()));
+  EXPECT_EQ(eighth.back(), 1);
+  EXPECT_EQ(threeEighths.back(), 2);
   if (!kernelAdvisesHugePages()) GTEST_SKIP() << "this kernel offers no transparent huge pages";
   if (!LIDAR_SGM_HUGE_PAGES_MAPPED) GTEST_SKIP() << "the sanitizer's allocator holds the blocks";
-  EXPECT_TRUE(advised(quarter.data() + kHugePageSize)) << vmFlagsAt(quarter.data() + kHugePageSize);
-  EXPECT_FALSE(advised(quarter.data() + 2 * kHugePageSize)) << vmFlagsAt(quarter.data() + 2 * kHugePageSize);
-  EXPECT_TRUE(advised(threeQuarters.data() + 2 * kHugePageSize)) << vmFlagsAt(threeQuarters.data() + 2 * kHugePageSize);
+  EXPECT_TRUE(advised(eighth.data() + kHugePageSize)) << vmFlagsAt(eighth.data() + kHugePageSize);
+  EXPECT_FALSE(advised(eighth.data() + 2 * kHugePageSize)) << vmFlagsAt(eighth.data() + 2 * kHugePageSize);
+  EXPECT_TRUE(advised(threeEighths.data() + 2 * kHugePageSize)) << vmFlagsAt(threeEighths.data() + 2 * kHugePageSize);
 }
 
 TEST(HugePages, VectorsGrowCopyAndCompareLikeAnyVector) {
