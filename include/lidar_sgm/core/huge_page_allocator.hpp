@@ -70,10 +70,10 @@ inline void* allocateHugePages(std::size_t bytes) {
   const std::uintptr_t end = begin + span;
   if (end > aligned + rounded) munmap(reinterpret_cast<void*>(aligned + rounded), end - (aligned + rounded));
   // A hint (without THP, small pages). The last, partial page is advised too when at least a
-  // quarter of it is data: a tail of t bytes on small pages costs t / 4 KiB faults (~0.5-1 us each on
-  // bare metal, ~14 us on the project's VM), on a huge page one fault and 2 MiB cleared (~80 us):
-  // from ~0.5 MiB on, the huge page is quicker, for at most 1.5 MiB of unused memory. (A frame's
-  // new cloud of 433,497 points had a 0.96 MiB tail, 246 faults a frame, under a rule of half.)
+  // quarter of it is data: a tail of t bytes on small pages costs t / 4 KiB first writes, ~14 us
+  // each on the project's VM, a huge page ~0.18 ms there (64 MiB written once in 5.6 ms): the huge
+  // page is quicker from ~50 KiB on, and a quarter keeps the unused memory under 1.5 MiB a block.
+  // (A frame's new cloud of 433,497 points had a 0.96 MiB tail, 246 faults a frame, at a half.)
   const std::size_t whole = bytes / kHugePageSize * kHugePageSize;
   const std::size_t advised = (bytes - whole) * kHugeTailFraction >= kHugePageSize ? rounded : whole;
   if (advised > 0) madvise(reinterpret_cast<void*>(aligned), advised, MADV_HUGEPAGE);
