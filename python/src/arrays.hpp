@@ -57,19 +57,19 @@ template <typename T>
 py::array_t<T> newArrayOfShape(const std::vector<py::ssize_t>& shape) {
   std::size_t count = 1;
   for (const py::ssize_t n : shape) count *= static_cast<std::size_t>(n);
-  const std::size_t bytes = count * sizeof(T);
-  if (bytes < kHugePageThreshold) return py::array_t<T>(shape);
+  if (count * sizeof(T) < kHugePageThreshold) return py::array_t<T>(shape);
+  // The block of a HugePageAllocator, freed by it when the capsule (the array's base) goes.
   struct Block {
-    void* data;
-    std::size_t bytes;
+    T* data;
+    std::size_t count;
     Block(const Block&) = delete;
     Block& operator=(const Block&) = delete;
-    ~Block() { freeHugePages(data, bytes); }
+    ~Block() { HugePageAllocator<T>().deallocate(data, count); }
   };
   // Allocated in place (a new-expression allocates before it evaluates its initializer, and frees
   // again if the pages cannot be had).
-  std::unique_ptr<Block> block(new Block{allocateHugePages(bytes), bytes});
-  T* data = static_cast<T*>(block->data);
+  std::unique_ptr<Block> block(new Block{HugePageAllocator<T>().allocate(count), count});
+  T* data = block->data;
   py::capsule owner(block.get(), [](void* p) { delete static_cast<Block*>(p); });
   block.release();  // the capsule owns it now
   return py::array_t<T>(shape, data, owner);

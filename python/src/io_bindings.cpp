@@ -6,8 +6,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include "bindings.hpp"
 #include "arrays.hpp"
+#include "bindings.hpp"
 #include "errors.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 #include "lidar_sgm/io/image_io.hpp"
