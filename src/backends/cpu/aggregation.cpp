@@ -75,9 +75,22 @@ HWY_INLINE void StepBlock(DT d, int i, const std::uint8_t* HWY_RESTRICT cost, co
   minimum = hn::Min(minimum, L);
 }
 
+#if HWY_MAX_BYTES >= 32
+// Halves a vector's lanes by the minimum of its halves (the next narrower block's accumulator).
+template <class DT>
+HWY_INLINE hn::Vec<hn::Half<DT>> MinOfHalves(DT d, hn::Vec<DT> v) {
+  const hn::Half<DT> dh;
+  (void)d;
+  return hn::Min(hn::LowerHalf(dh, v), hn::UpperHalf(dh, v));
+}
+#endif
+
 // One step of Eq. 1 for every d: out[d] = C(d) + min(prev[d], prev[d-1] + P1, prev[d+1] + P1,
 // prevMin + P2) - prevMin. `prev` and `out` point at d = 0 of a slot (sentinels at -1 and D).
-// Returns min_d out[d].
+// Returns min_d out[d]. Blocks of the widest vector first (64 bytes where the target has them),
+// then narrower ones (D is a multiple of 16 lanes); the running minimum narrows with the blocks,
+// so one reduction of a 16-byte or 32-byte vector ends the step (on a horizontal path it is on the
+// chain from one pixel to the next).
 template <typename T>
 HWY_INLINE unsigned PathStep(const std::uint8_t* HWY_RESTRICT cost, const T* HWY_RESTRICT prev, unsigned prevMin,
                              T* HWY_RESTRICT out, int D, int P1, int P2) {
@@ -87,17 +100,35 @@ HWY_INLINE unsigned PathStep(const std::uint8_t* HWY_RESTRICT cost, const T* HWY
   const T jump = static_cast<T>(std::min(prevMin + static_cast<unsigned>(P2), kMax));
   const T p1 = static_cast<T>(std::min(static_cast<unsigned>(P1), kMax));
   const T minPrev = static_cast<T>(prevMin);
-  auto minimum = hn::Set(df, static_cast<T>(kMax));
   const int N = static_cast<int>(hn::Lanes(df));
   int i = 0;
+#if HWY_MAX_BYTES >= 64
+  const hn::Twice<decltype(df)> dw;
+  const int NW = static_cast<int>(hn::Lanes(dw));
+  auto wide = hn::Set(dw, static_cast<T>(kMax));
+  for (; i + NW <= D; i += NW) StepBlock(dw, i, cost, prev, out, p1, jump, minPrev, wide);
+  auto minimum = MinOfHalves(dw, wide);
+#else
+  auto minimum = hn::Set(df, static_cast<T>(kMax));
+#endif
   for (; i + N <= D; i += N) StepBlock(df, i, cost, prev, out, p1, jump, minPrev, minimum);
-  unsigned result = MinLane(df, minimum);
-  if (i < D) {
-    auto tail = hn::Set(dt, static_cast<T>(kMax));
+#if HWY_MAX_BYTES >= 32
+  if constexpr (sizeof(T) == 1) {
+    // 8-bit lanes: the 16-lane tail is half a full vector.
+    auto tail = MinOfHalves(df, minimum);
     for (; i < D; i += static_cast<int>(hn::Lanes(dt))) StepBlock(dt, i, cost, prev, out, p1, jump, minPrev, tail);
-    result = std::min(result, MinLane(dt, tail));
+    return MinLane(dt, tail);
+  } else
+#endif
+  {
+    unsigned result = MinLane(df, minimum);
+    if (i < D) {
+      auto tail = hn::Set(dt, static_cast<T>(kMax));
+      for (; i < D; i += static_cast<int>(hn::Lanes(dt))) StepBlock(dt, i, cost, prev, out, p1, jump, minPrev, tail);
+      result = std::min(result, MinLane(dt, tail));
+    }
+    return result;
   }
-  return result;
 }
 
 // The start of a path: L = C (Eq. 1 with no previous pixel).

@@ -31,7 +31,7 @@ HWY_INLINE int FirstMinimum(const std::uint16_t* HWY_RESTRICT S, int D) {
   const int N = static_cast<int>(hn::Lanes(d16));
   auto minimum = hn::LoadU(d16, S);
   for (int i = N; i < D; i += N) minimum = hn::Min(minimum, hn::LoadU(d16, S + i));
-  const auto target = hn::MinOfLanes(d16, minimum);
+  const auto target = hn::Set(d16, static_cast<std::uint16_t>(MinLaneU16(minimum)));
   for (int i = 0; i < D; i += N) {
     const intptr_t lane = hn::FindFirstTrue(d16, hn::Eq(hn::LoadU(d16, S + i), target));
     if (lane >= 0) return i + static_cast<int>(lane);
@@ -117,7 +117,7 @@ void SumSelectRowT(const T* const* pathList, const std::uint8_t* stored8, const 
       hn::StoreU(sum, d16, S + i);
       minimum = hn::Min(minimum, sum);
     }
-    const auto target = hn::MinOfLanes(d16, minimum);
+    const auto target = hn::Set(d16, static_cast<std::uint16_t>(MinLaneU16(minimum)));
     int best = 0;
     for (int i = 0; i < n; i += N) {
       const intptr_t lane = hn::FindFirstTrue(d16, hn::Eq(hn::LoadU(d16, S + i), target));

@@ -99,7 +99,7 @@ HWY_INLINE void PeakRatioMarginPixel(const std::uint16_t* HWY_RESTRICT S, int D,
     lowest = hn::Min(lowest, hn::IfThenElse(own, none, hn::LoadU(d16, S + i)));
   }
   for (int i = maskedEnd; i < D; i += N) lowest = hn::Min(lowest, hn::LoadU(d16, S + i));
-  const int second = hn::GetLane(hn::MinOfLanes(d16, lowest));
+  const int second = static_cast<int>(MinLaneU16(lowest));
   if (second == 0xFFFF) {
     *margin = 255;
     return;
