@@ -321,7 +321,10 @@ TEST_P(BackendStages, AggregatePathsSelectionAndLeftRightCheck) {
     int P1, P2, maxCost;
   };
   for (const StageCase& c : kStageCases) {
-    for (const Penalties& pen : {Penalties{10, 100, 62}, Penalties{0, 1, 62}, Penalties{3999, 4000, 255}}) {
+    // 62 + 192 and 62 + 193: the largest path cost one below and at 255, where the backends'
+    // 8-bit path costs end (the cuda backend's 8-bit volumes keep 255 for an absent entry).
+    for (const Penalties& pen : {Penalties{10, 100, 62}, Penalties{0, 1, 62}, Penalties{3999, 4000, 255},
+                                 Penalties{10, 192, 62}, Penalties{10, 193, 62}}) {
       const MatchingCostVolume cost = randomCosts(c.width, c.height, c.numDisparities, pen.maxCost, 11);
       for (const int paths : {4, 8}) {
         AggregatedCostVolume expected, actual;
@@ -450,6 +453,9 @@ std::vector<FrameCase> frameCases() {
       {"EightPathsLargePenalties", 99, 41, 8, "lidar",
        [](Parameters& p) { p.numDisparities = 32; p.paths = 8; p.P2 = 4000; p.lidarCostCap = 255; }},
       {"ZeroPenalty", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.P1 = 0; p.P2 = 1; }},
+      // The largest path cost (62 + P2) at 254 and 255: the last 8-bit frames of the backends.
+      {"PathCosts254", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.P2 = 192; }},
+      {"PathCosts255", 99, 41, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.P2 = 193; }},
       {"AlphaZero", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.alpha = 0.0f; }},
       {"AlphaOne", 99, 41, 8, "fused", [](Parameters& p) { p.numDisparities = 32; p.alpha = 1.0f; }},
       {"SigmaAndCap", 99, 41, 8, "fused",
@@ -508,6 +514,8 @@ std::vector<FrameCase> frameCases() {
       {"GatedAdaptiveAlpha", 131, 61, 8, "fused",
        [](Parameters& p) { p.numDisparities = 64; p.alphaMode = AlphaMode::Adaptive; p.gatedSearch = true; }},
       {"GatedDefaults", 131, 61, 8, "fused", [](Parameters& p) { p = Parameters(); p.numDisparities = 64; }},
+      {"GatedPathCosts254", 131, 61, 8, "fused",
+       [](Parameters& p) { p.numDisparities = 64; p.P2 = 192; p.gatedSearch = true; p.gatedSearchMargin = 2; }},
   };
   return cases;
 }

@@ -17,6 +17,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "backends/common/path_costs.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
@@ -323,7 +324,7 @@ HWY_EXPORT(StorePathSum16);
 HWY_EXPORT(AddPathRow8);
 HWY_EXPORT(AddPathRow16);
 
-bool pathCostsFit8Bits(int maxCost, int P2) { return maxCost + P2 <= 255; }
+bool pathCostsFit8Bits(int maxCost, int P2) { return largestPathCost(maxCost, P2) <= 255; }
 
 void pathRowFromPrevious(const std::uint8_t* costRow, int costX0, const std::uint8_t* previous,
                          const std::uint16_t* previousMin, int dx, int width, int x0, int x1, int numDisparities,

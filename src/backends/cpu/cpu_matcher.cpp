@@ -8,6 +8,7 @@
 
 #include "backends/common/lidar_search_windows.hpp"
 #include "backends/common/lidar_weights.hpp"
+#include "backends/common/path_costs.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
@@ -30,16 +31,6 @@ void resizeKeep(Vector& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 
-// The largest matching cost of the mode, and so the largest path cost L <= C + P2 (Eq. 1).
-int largestCost(const FramePlan& plan) {
-  switch (plan.mode) {
-    case MatchMode::StereoOnly: return kMaxCensusCost;
-    case MatchMode::LidarOnly: return plan.params.lidarCostCap;
-    case MatchMode::Fused: break;
-  }
-  return std::max(kMaxCensusCost, plan.params.lidarCostCap);
-}
-
 }  // namespace
 
 void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std::int16_t> disparity,
@@ -50,7 +41,7 @@ void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std
   f.lidar = in.lidar;
   f.threads = effectiveThreads(plan.params);
   f.verticalPaths = plan.params.paths == 8 ? 3 : 1;
-  f.paths8 = pathCostsFit8Bits(largestCost(plan), plan.params.P2);
+  f.paths8 = pathCostsFit8Bits(largestMatchingCost(plan), plan.params.P2);
   f.rowSlots = static_cast<std::size_t>(plan.width) * pathSlot(plan.D);
   if (plan.useCameras()) censusImages(f, in);
   if (plan.useLidar) lidarPixels(f);

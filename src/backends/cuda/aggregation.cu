@@ -5,7 +5,9 @@
 // needs the previous pixel's L at d - 1 and d + 1 (a shuffle across the lane boundary) and its
 // minimum over d (a warp reduction). Every direction of a launch runs at once (blockIdx.y), each
 // into its own L_r volume, so the rows, columns and diagonals of all directions keep the GPU
-// busy; selection.cu sums them. The arithmetic is cpu_ref's pathCostStep, in int.
+// busy; selection.cu sums them. The arithmetic is cpu_ref's pathCostStep, in int; the volumes
+// store it in 8 bits where every path cost fits (pathCostsFit8Bits, as libSGM stores them: half
+// the bytes written here and read by the selection), else in 16.
 //
 // A row is 1242 steps on KITTI and only 2 x 375 row lines run at once, so the time of a step's
 // serial chain is the time of the stage. The matching cost is read from the volume stored before
@@ -174,10 +176,29 @@ __device__ __forceinline__ void storeSlots(std::uint16_t* out, const int (&L)[VP
   }
 }
 
+/// The same in 8 bits (every value below 256: pathCostsFit8Bits): 1, 2 or 4 bytes in one store,
+/// 8 or 16 as 4-byte words (aligned: the pixel's D bytes are a multiple of 16, firstD of VPL).
 template <int VPL>
+__device__ __forceinline__ void storeSlots(std::uint8_t* out, const int (&L)[VPL]) {
+  if constexpr (VPL == 1) {
+    out[0] = static_cast<std::uint8_t>(L[0]);
+  } else if constexpr (VPL == 2) {
+    *reinterpret_cast<unsigned short*>(out) =
+        static_cast<unsigned short>(static_cast<unsigned>(L[0]) | (static_cast<unsigned>(L[1]) << 8));
+  } else {
+#pragma unroll
+    for (int k = 0; k < VPL; k += 4) {
+      *reinterpret_cast<unsigned*>(out + k) = static_cast<unsigned>(L[k]) | (static_cast<unsigned>(L[k + 1]) << 8) |
+                                              (static_cast<unsigned>(L[k + 2]) << 16) |
+                                              (static_cast<unsigned>(L[k + 3]) << 24);
+    }
+  }
+}
+
+template <int VPL, typename PathT>
 __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
     aggregateKernel(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2,
-                    DeviceVolume<std::uint16_t> pathCosts) {
+                    DeviceVolume<PathT> pathCosts) {
   const int lane = static_cast<int>(threadIdx.x) & (kWarpSize - 1);
   const int line = static_cast<int>(blockIdx.x) * kWarpsPerBlock + static_cast<int>(threadIdx.x) / kWarpSize;
   const Direction r = kDirections[blockIdx.y];
@@ -190,7 +211,7 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
 
   const int firstD = lane * VPL;
   const bool active = firstD < D;  // all or none of a lane's slots are below D
-  std::uint16_t* const volume = pathCosts.data + static_cast<std::size_t>(blockIdx.y) * pathCosts.size();
+  PathT* const volume = pathCosts.data + static_cast<std::size_t>(blockIdx.y) * pathCosts.size();
   // The next kAhead steps' inputs, in flight while the chain runs (kAhead == 4).
   const int x0 = x;
   const int y0 = y;
@@ -240,7 +261,7 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
       for (int k = 0; k < VPL; ++k) laneMin = min(laneMin, L[k]);
       int stored[VPL];
 #pragma unroll
-      for (int k = 0; k < VPL; ++k) stored[k] = L[k] == kAbsent ? kAbsentPathCost : L[k];
+      for (int k = 0; k < VPL; ++k) stored[k] = L[k] == kAbsent ? absentPathCost<PathT>() : L[k];
       storeSlots<VPL>(volume + (static_cast<std::size_t>(y) * width + x) * D + firstD, stored);
     }
     previousMin = warpMin(laneMin);
@@ -256,18 +277,29 @@ int linesOf(int width, int height, int paths) {
   return lines;
 }
 
-}  // namespace
-
-void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
-                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
+template <typename PathT>
+void launchAggregation(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
+                       DeviceVolume<PathT> pathCosts, cudaStream_t stream) {
   const dim3 grid(
       static_cast<unsigned>((linesOf(cost.width, cost.height, paths) + kWarpsPerBlock - 1) / kWarpsPerBlock),
       static_cast<unsigned>(paths));
   withSlotsPerLane(cost.numDisparities, [&](auto slots) {
     constexpr int VPL = decltype(slots)::value;
-    aggregateKernel<VPL><<<grid, kWarpsPerBlock * kWarpSize, 0, stream>>>(cost, windows, P1, P2, pathCosts);
+    aggregateKernel<VPL, PathT><<<grid, kWarpsPerBlock * kWarpSize, 0, stream>>>(cost, windows, P1, P2, pathCosts);
   });
   LIDAR_SGM_CUDA_CHECK_LAUNCH("aggregateKernel");
+}
+
+}  // namespace
+
+void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
+                    DeviceVolume<std::uint8_t> pathCosts, cudaStream_t stream) {
+  launchAggregation(cost, windows, P1, P2, paths, pathCosts, stream);
+}
+
+void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
+                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream) {
+  launchAggregation(cost, windows, P1, P2, paths, pathCosts, stream);
 }
 
 }  // namespace cuda

@@ -43,6 +43,8 @@ struct CudaMatcher::FrameImages {
   DeviceImage<std::uint8_t> support, coverage;
   DeviceWindows windows;  // empty: the whole range at every pixel
   DeviceVolume<std::uint8_t> matchingCost;
+  bool paths8 = false;                      // the L_r volumes in 8 bits (pathCosts8), else pathCosts
+  DeviceVolume<std::uint8_t> pathCosts8;
   DeviceVolume<std::uint16_t> pathCosts, sum;
   DeviceImage<std::int16_t> raw, best, rightIndex, filtered;
   DeviceImage<std::uint8_t> margin, difference;
@@ -161,7 +163,12 @@ void CudaMatcher::reserveImages(const FramePlan& plan, FrameImages& f) {
   f.confidence = readbackImage<std::uint8_t>(dev.readback, layout.confidence, W, H);
   f.filtered = readbackImage<std::int16_t>(dev.readback, layout.disparity, W, H);
   f.matchingCost = denseVolume(dev.matchingCost, W, H, plan.D);
-  f.pathCosts = denseVolume(dev.pathCosts, W, H, plan.D, plan.params.paths);
+  f.paths8 = pathCostsFit8Bits(largestMatchingCost(plan), plan.params.P2);
+  if (f.paths8) {
+    f.pathCosts8 = denseVolume(dev.pathCosts8, W, H, plan.D, plan.params.paths);
+  } else {
+    f.pathCosts = denseVolume(dev.pathCosts, W, H, plan.D, plan.params.paths);
+  }
   f.sum = denseVolume(dev.sum, W, H, plan.D);
   f.raw = denseImage<std::int16_t>(dev.rawDisparity, W, H);
   f.best = denseImage<std::int16_t>(dev.bestIndex, W, H);
@@ -254,15 +261,24 @@ void CudaMatcher::censusTransforms(const FramePlan& plan, FrameImages& f) {
 // Eq. 1 on the matching cost (C_S, C_S3, C_L or Eq. 5) stored before.
 void CudaMatcher::aggregatePaths(const FramePlan& plan, FrameImages& f) {
   const Parameters& p = plan.params;
-  cuda::aggregatePaths(asConst(f.matchingCost), f.windows, p.P1, p.P2, p.paths, f.pathCosts, device_->stream);
+  if (f.paths8) {
+    cuda::aggregatePaths(asConst(f.matchingCost), f.windows, p.P1, p.P2, p.paths, f.pathCosts8, device_->stream);
+  } else {
+    cuda::aggregatePaths(asConst(f.matchingCost), f.windows, p.P1, p.P2, p.paths, f.pathCosts, device_->stream);
+  }
 }
 
 // S, the winners and the confidence inputs that need S, read before the check invalidates.
 void CudaMatcher::selectDisparity(const FramePlan& plan, FrameImages& f) {
   const Parameters& p = plan.params;
   cudaStream_t stream = device_->stream;
-  cuda::selectDisparity(asConst(f.pathCosts), p.paths, f.sum, plan.minDisparity, p.uniquenessRatio, p.subpixel, f.raw,
-                        f.best, stream);
+  if (f.paths8) {
+    cuda::selectDisparity(asConst(f.pathCosts8), p.paths, f.sum, plan.minDisparity, p.uniquenessRatio, p.subpixel,
+                          f.raw, f.best, stream);
+  } else {
+    cuda::selectDisparity(asConst(f.pathCosts), p.paths, f.sum, plan.minDisparity, p.uniquenessRatio, p.subpixel,
+                          f.raw, f.best, stream);
+  }
   if (plan.confidence) cuda::peakRatioMargin(asConst(f.sum), asConst(f.best), f.margin, f.bestCost, stream);
 }
 

@@ -1,6 +1,7 @@
 // The host-memory stage entry points of cuda_stages.hpp: upload, one kernel, download.
 #include "backends/cuda/cuda_stages.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -207,15 +208,32 @@ void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo
   toHost(out, fused);
 }
 
-void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum) {
+namespace {
+
+// The stage through L_r volumes of PathT, then S.
+template <typename PathT>
+void aggregateThrough(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum) {
   const auto c = toDevice(cost);
-  auto pathCosts = allocateVolume<std::uint16_t>(cost.width(), cost.height(), cost.numDisparities(),
-                                                 static_cast<std::size_t>(paths));
+  auto pathCosts = allocateVolume<PathT>(cost.width(), cost.height(), cost.numDisparities(),
+                                         static_cast<std::size_t>(paths));
   aggregatePaths(c.view(), DeviceWindows{}, P1, P2, paths, pathCosts.volume, nullptr);
   auto out = allocateVolume<std::uint16_t>(cost.width(), cost.height(), cost.numDisparities());
   selectDisparity(pathCosts.view(), paths, out.volume, 0, 0, false, DeviceImage<std::int16_t>{},
                   DeviceImage<std::int16_t>{}, nullptr);
   toHost(out, sum);
+}
+
+}  // namespace
+
+void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum) {
+  // The volume does not say which costs it holds: its largest value bounds them (as the cpu
+  // backend's stage decides).
+  const int maxCost = cost.size() == 0 ? 0 : *std::max_element(cost.data(), cost.data() + cost.size());
+  if (pathCostsFit8Bits(maxCost, P2)) {
+    aggregateThrough<std::uint8_t>(cost, P1, P2, paths, sum);
+  } else {
+    aggregateThrough<std::uint16_t>(cost, P1, P2, paths, sum);
+  }
 }
 
 void selectDisparity(const AggregatedCostVolume& sum, int minDisparity, int uniquenessRatio, bool subpixel,

@@ -7,6 +7,7 @@
 
 #include <cuda_runtime_api.h>
 
+#include "backends/common/path_costs.hpp"
 #include "backends/cuda/device_types.hpp"
 #include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/parameters.hpp"
@@ -46,21 +47,42 @@ void fuseCosts(DeviceVolume<const std::uint8_t> lidar, DeviceVolume<const std::u
                DeviceImage<const std::uint8_t> support, DeviceImage<const std::uint16_t> weights, int alphaWeight,
                bool stereoCostWithoutLidar, DeviceVolume<std::uint8_t> fused, cudaStream_t stream);
 
-// aggregation.cu: Eq. 1 along `paths` directions (cpu_ref's order) on a stored matching-cost
-// volume, L_r of direction r into pathCosts + r * volume size. With `windows` (the gated search),
-// Eq. 1 runs on each pixel's window (gated_stages.hpp) and an entry outside it holds
-// kAbsentPathCost; empty windows: the whole range.
-void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
-                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream);
-
 /// A path cost or sum outside its pixel's search window (the gated search): no candidate. Every
 /// real value is below it (L <= 255 + P2, S <= 8 * (255 + 4000)), so the whole-range search never
 /// stores it and the stages after the aggregation need no windows: they skip this value.
 constexpr std::uint16_t kAbsentPathCost = 0xFFFF;
+/// The same in an 8-bit L_r volume: path costs are stored in 8 bits only when every real one is
+/// below it (pathCostsFit8Bits).
+constexpr std::uint8_t kAbsentPathCost8 = 0xFF;
+
+/// What an entry outside its pixel's window holds in an L_r volume of PathT (uint8 or uint16).
+template <typename PathT>
+LIDAR_SGM_HOST_DEVICE constexpr int absentPathCost() {
+  return sizeof(PathT) == 1 ? kAbsentPathCost8 : kAbsentPathCost;
+}
+
+/// Whether a frame's L_r volumes hold 8 bits a path cost (as libSGM's): the largest path cost
+/// (path_costs.hpp) below kAbsentPathCost8, which marks an entry outside a window. Half the
+/// bytes written by the aggregation and read by the selection.
+inline bool pathCostsFit8Bits(int maxCost, int P2) { return largestPathCost(maxCost, P2) < kAbsentPathCost8; }
+
+// aggregation.cu: Eq. 1 along `paths` directions (cpu_ref's order) on a stored matching-cost
+// volume, L_r of direction r into pathCosts + r * volume size, in 8 bits (only where
+// pathCostsFit8Bits) or 16. With `windows` (the gated search), Eq. 1 runs on each pixel's window
+// (gated_stages.hpp) and an entry outside it holds kAbsentPathCost8 / kAbsentPathCost; empty
+// windows: the whole range.
+void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
+                    DeviceVolume<std::uint8_t> pathCosts, cudaStream_t stream);
+void aggregatePaths(DeviceVolume<const std::uint8_t> cost, DeviceWindows windows, int P1, int P2, int paths,
+                    DeviceVolume<std::uint16_t> pathCosts, cudaStream_t stream);
 
 // selection.cu: S = sum of the `numPaths` volumes at pathCosts (written to `sum` unless its data
-// is null; kAbsentPathCost where the paths hold it), then winner-takes-all with uniqueness and
-// sub-pixel (Eq. 2) over the entries that are not absent, unless disparity16 is empty.
+// is null; kAbsentPathCost where the paths hold their absent value), then winner-takes-all with
+// uniqueness and sub-pixel (Eq. 2) over the entries that are not absent, unless disparity16 is
+// empty.
+void selectDisparity(DeviceVolume<const std::uint8_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
+                     int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
+                     DeviceImage<std::int16_t> bestIndex, cudaStream_t stream);
 void selectDisparity(DeviceVolume<const std::uint16_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
                      int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
                      DeviceImage<std::int16_t> bestIndex, cudaStream_t stream);

@@ -57,7 +57,10 @@ struct CudaMatcher::Device {
   DeviceBuffer<std::int16_t> windowFirst;
   DeviceBuffer<std::int16_t> windowCount;
   DeviceBuffer<std::uint8_t> matchingCost;  // C, W x H x D bytes (cost_volume.cu)
-  DeviceBuffer<std::uint16_t> pathCosts;  // one L_r volume per path
+  // One L_r volume per path, in 8 bits where the frame's path costs fit (kernels.hpp), else 16;
+  // only the one a frame uses is allocated.
+  DeviceBuffer<std::uint8_t> pathCosts8;
+  DeviceBuffer<std::uint16_t> pathCosts;
   DeviceBuffer<std::uint16_t> sum;
   DeviceBuffer<std::int16_t> rawDisparity;
   DeviceBuffer<std::int16_t> bestIndex;

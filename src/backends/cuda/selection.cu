@@ -1,9 +1,10 @@
 // The sum over paths (Eq. 2's S) and the winner-takes-all selection on the GPU: one warp per
 // pixel, VPL disparities per lane. The winner is the minimum of the keys (S << 16) | d, so the
 // first minimum wins ties as in cpu_ref/selection.cpp; uniqueness and the parabola use the same
-// integer arithmetic. With the gated search, an entry outside the pixel's window is
-// kAbsentPathCost in every path (aggregation.cu) and in S: above every real key, never a rival,
-// and a winner next to it keeps its integer disparity (cpu_ref/gated_selection.cpp).
+// integer arithmetic. The L_r volumes hold 8 or 16 bits a path cost (aggregation.cu). With the
+// gated search, an entry outside the pixel's window is absent in every path (absentPathCost,
+// aggregation.cu) and kAbsentPathCost in S: above every real key, never a rival, and a winner
+// next to it keeps its integer disparity (cpu_ref/gated_selection.cpp).
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/kernels.hpp"
 #include "backends/cuda/launch.cuh"
@@ -27,9 +28,25 @@ __device__ __forceinline__ void loadSlots(const std::uint16_t* in, int (&values)
   for (int k = 0; k < VPL; ++k) values[k] = __ldg(in + k);
 }
 
+/// 8-bit path costs: VPL >= 4 as 4-byte words (aligned: D is a multiple of 16, firstD of VPL).
 template <int VPL>
+__device__ __forceinline__ void loadSlots(const std::uint8_t* in, int (&values)[VPL]) {
+  if constexpr (VPL < 4) {
+#pragma unroll
+    for (int k = 0; k < VPL; ++k) values[k] = __ldg(in + k);
+  } else {
+#pragma unroll
+    for (int k = 0; k < VPL; k += 4) {
+      const unsigned word = __ldg(reinterpret_cast<const unsigned*>(in + k));
+#pragma unroll
+      for (int b = 0; b < 4; ++b) values[k + b] = static_cast<int>((word >> (8 * b)) & 0xFFu);
+    }
+  }
+}
+
+template <int VPL, typename PathT>
 __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
-    selectKernel(DeviceVolume<const std::uint16_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
+    selectKernel(DeviceVolume<const PathT> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
                  int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
                  DeviceImage<std::int16_t> bestIndex) {
   const int lane = static_cast<int>(threadIdx.x) & (kWarpSize - 1);
@@ -52,7 +69,7 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
       loadSlots<VPL>(pathCosts.data + static_cast<std::size_t>(r) * pathCosts.size() + pixel * D + firstD, L);
 #pragma unroll
       for (int k = 0; k < VPL; ++k) {
-        if (r == 0) absent[k] = L[k] == kAbsentPathCost;  // outside the window: so in every path
+        if (r == 0) absent[k] = L[k] == absentPathCost<PathT>();  // outside the window: so in every path
         S[k] += L[k];  // <= 8 * (255 + 4000): no 16-bit overflow
       }
     }
@@ -113,18 +130,31 @@ __global__ void __launch_bounds__(kWarpsPerBlock * kWarpSize)
   bestIndex(x, y) = static_cast<std::int16_t>(best);
 }
 
-}  // namespace
-
-void selectDisparity(DeviceVolume<const std::uint16_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
+template <typename PathT>
+void launchSelection(DeviceVolume<const PathT> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
                      int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
                      DeviceImage<std::int16_t> bestIndex, cudaStream_t stream) {
   const unsigned blocks = static_cast<unsigned>((pathCosts.pixels() + kWarpsPerBlock - 1) / kWarpsPerBlock);
   withSlotsPerLane(pathCosts.numDisparities, [&](auto slots) {
     constexpr int VPL = decltype(slots)::value;
-    selectKernel<VPL><<<blocks, kWarpsPerBlock * kWarpSize, 0, stream>>>(
+    selectKernel<VPL, PathT><<<blocks, kWarpsPerBlock * kWarpSize, 0, stream>>>(
         pathCosts, numPaths, sum, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex);
   });
   LIDAR_SGM_CUDA_CHECK_LAUNCH("selectKernel");
+}
+
+}  // namespace
+
+void selectDisparity(DeviceVolume<const std::uint8_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
+                     int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
+                     DeviceImage<std::int16_t> bestIndex, cudaStream_t stream) {
+  launchSelection(pathCosts, numPaths, sum, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex, stream);
+}
+
+void selectDisparity(DeviceVolume<const std::uint16_t> pathCosts, int numPaths, DeviceVolume<std::uint16_t> sum,
+                     int minDisparity, int uniquenessRatio, bool subpixel, DeviceImage<std::int16_t> disparity16,
+                     DeviceImage<std::int16_t> bestIndex, cudaStream_t stream) {
+  launchSelection(pathCosts, numPaths, sum, minDisparity, uniquenessRatio, subpixel, disparity16, bestIndex, stream);
 }
 
 }  // namespace cuda
