@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <utility>
 
 #include "backends/common/lidar_search_windows.hpp"
@@ -188,25 +189,58 @@ void CpuMatcher::prepareBuffers(const Frame& f) {
   if (plan.confidenceLr) confidence.leftRightDifference.resize(W, H);
 }
 
-// The path rows of both sweeps, grown only (no allocation per frame after the first of a size).
-// They are filled with sentinels (all ones) once per layout: the kernels never write a slot's
-// two ends.
+namespace {
+
+// Sets the two ends ([0] and [D + 1]) of every pixel's slot in `rows` path rows to the sentinel
+// (all ones): the kernels write every slot's inside and never its ends (cpu_kernels.hpp).
+void markSlotEnds(std::uint8_t* rows, std::size_t count, std::size_t rowBytes, int width, int D,
+                  std::size_t element) {
+  const std::size_t slotBytes = static_cast<std::size_t>(pathSlot(D)) * element;
+  const std::size_t last = static_cast<std::size_t>(D + 1) * element;
+  for (std::size_t r = 0; r < count; ++r) {
+    std::uint8_t* row = rows + r * rowBytes;
+    for (int x = 0; x < width; ++x) {
+      std::uint8_t* slot = row + static_cast<std::size_t>(x) * slotBytes;
+      std::memset(slot, 0xFF, element);
+      std::memset(slot + last, 0xFF, element);
+    }
+  }
+}
+
+// Grows `rows` to `count` path rows (never shrinks it: no allocation per frame after the first
+// of a size) and marks their slot ends when the layout changed or the rows grew.
+template <typename Bytes>
+void preparePathBuffer(Bytes& rows, std::size_t count, std::size_t rowBytes, int width, int D,
+                       std::size_t element, bool newLayout) {
+  const std::size_t bytes = count * rowBytes;
+  if (!newLayout && rows.size() >= bytes) return;
+  if (rows.size() < bytes) rows.resize(bytes);
+  markSlotEnds(rows.data(), count, rowBytes, width, D, element);
+}
+
+}  // namespace
+
+// The path rows of both sweeps, grown only. Only their slots' ends need the sentinel, marked once
+// per layout: a frame's stereo witness (hidden_lidar.hpp) runs on this matcher at half scale
+// before the frame itself, so the layout changes twice a frame, and filling the whole rows each
+// time (13.6 MB at KITTI size) cost more than the marks (0.2 MB).
 void CpuMatcher::preparePathRows(const Frame& f, bool& newLayout) {
   const int W = f.plan.width;
   const int H = f.plan.height;
+  const int D = f.plan.D;
   const std::size_t element = f.paths8 ? 1 : 2;
   const std::size_t rowBytes = f.rowSlots * element;
   const std::size_t layout =
-      (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(f.plan.D);
+      (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(D);
   newLayout = layout != pathLayout_;
   pathLayout_ = layout;
   // Per chunk: each vertical path downward and upward (2 * verticalPaths rows of kChunkRows),
   // in two parities.
   const std::size_t chunkPathRows = 2 * static_cast<std::size_t>(kChunkRows) * 2 * f.verticalPaths;
   const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows) * f.verticalPaths;
-  if (newLayout) pathRows_.assign(6 * rowBytes, 0xFF);
-  if (newLayout || chunkPaths_.size() < chunkPathRows * rowBytes) chunkPaths_.assign(chunkPathRows * rowBytes, 0xFF);
-  if (newLayout || checkpoints_.size() < checkpoints * rowBytes) checkpoints_.assign(checkpoints * rowBytes, 0xFF);
+  preparePathBuffer(pathRows_, 6, rowBytes, W, D, element, newLayout);
+  preparePathBuffer(chunkPaths_, chunkPathRows, rowBytes, W, D, element, newLayout);
+  preparePathBuffer(checkpoints_, checkpoints, rowBytes, W, D, element, newLayout);
   resizeKeep(pathMins_, 6 * static_cast<std::size_t>(W));
   resizeKeep(chunkMins_, chunkPathRows * W);
   resizeKeep(checkpointMins_, checkpoints * W);
@@ -232,8 +266,8 @@ void CpuMatcher::prepareWorkers(const Frame& f, bool newLayout) {
     if (plan.lrCheck || plan.confidenceLr) {
       resizeKeep(w.rightScratch, rightIndexScratchSize(W, plan.D, plan.minDisparity));
     }
-    if (newLayout || w.rightward.size() != rowBytes) w.rightward.assign(rowBytes, 0xFF);
-    if (newLayout || w.leftward.size() != rowBytes) w.leftward.assign(rowBytes, 0xFF);
+    preparePathBuffer(w.rightward, 1, rowBytes, W, plan.D, f.paths8 ? 1 : 2, newLayout);
+    preparePathBuffer(w.leftward, 1, rowBytes, W, plan.D, f.paths8 ? 1 : 2, newLayout);
     w.censusCostMs = w.verticalCostMs = w.lidarCostMs = w.fuseMs = w.selectMs = 0;
   }
 }
