@@ -45,6 +45,7 @@ struct StageSet {
   std::function<void(const LidarPoints&, const LidarCostTable&, int, MatchingCostVolume&, ImageView<std::uint8_t>)>
       lidarCost;
   std::function<void(const LidarPoints&, int, ImageView<std::uint8_t>)> lidarCoverage;
+  std::function<void(const LidarPoints&, int, int, int, int, SearchWindows&)> lidarSearchWindows;
   std::function<void(const MatchingCostVolume&, const MatchingCostVolume&, ImageView<const std::uint8_t>, int, bool,
                      MatchingCostVolume&)> fuseCosts;
   std::function<void(const MatchingCostVolume&, const MatchingCostVolume&, ImageView<const std::uint8_t>,
@@ -78,6 +79,9 @@ bool stagesOf(const std::string& backend, int threads, StageSet& s) {
       cpu::lidarCost(p, table, minD, cost, support, t);
     };
     s.lidarCoverage = [t](const auto& p, int rows, auto out) { cpu::lidarCoverage(p, rows, out, t); };
+    s.lidarSearchWindows = [t](const auto& p, int minD, int D, int rows, int margin, auto& windows) {
+      cpu::lidarSearchWindows(p, minD, D, rows, margin, windows, t);
+    };
     s.fuseCosts = [t](const auto& l, const auto& st, auto support, int w, bool flag, auto& out) {
       cpu::fuseCosts(l, st, support, w, flag, out, t);
     };
@@ -118,6 +122,9 @@ bool stagesOf(const std::string& backend, int threads, StageSet& s) {
       cuda::lidarCost(p, table, minD, cost, support);
     };
     s.lidarCoverage = [](const auto& p, int rows, auto out) { cuda::lidarCoverage(p, rows, out); };
+    s.lidarSearchWindows = [](const auto& p, int minD, int D, int rows, int margin, auto& windows) {
+      cuda::lidarSearchWindows(p, minD, D, rows, margin, windows);
+    };
     s.fuseCosts = [](const auto& l, const auto& st, auto support, int w, bool flag, auto& out) {
       cuda::fuseCosts(l, st, support, w, flag, out);
     };
@@ -302,6 +309,24 @@ TEST_P(BackendStages, LidarCostSupportCoverageAndFusion) {
       cpu_ref::lidarCoverage(scene.lidar, rows, coverageExpected.view());
       stages_.lidarCoverage(scene.lidar, rows, coverageActual.view());
       EXPECT_TRUE(sameImages(coverageExpected, coverageActual)) << "lidarCoverage rows " << rows;
+    }
+    // The gate's windows (lidarSearchWindows, the host's single-threaded passes, is the rule).
+    struct Gate {
+      int rows, margin;
+    };
+    for (const Gate& g : {Gate{1, 0}, Gate{6, 12}, Gate{64, 3}}) {
+      SearchWindows expected, actual;
+      lidarSearchWindows(scene.lidar, c.minDisparity, c.numDisparities, g.rows, g.margin, expected);
+      stages_.lidarSearchWindows(scene.lidar, c.minDisparity, c.numDisparities, g.rows, g.margin, actual);
+      ASSERT_EQ(actual.width(), c.width);
+      ASSERT_EQ(actual.height(), c.height);
+      int differences = 0;
+      for (int y = 0; y < c.height; ++y) {
+        for (int x = 0; x < c.width; ++x) {
+          if (expected.first(x, y) != actual.first(x, y) || expected.count(x, y) != actual.count(x, y)) ++differences;
+        }
+      }
+      EXPECT_EQ(differences, 0) << "lidarSearchWindows rows " << g.rows << " margin " << g.margin;
     }
   }
 }

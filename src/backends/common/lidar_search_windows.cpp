@@ -3,29 +3,12 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
+#include "backends/common/search_window_rule.hpp"
 #include "lidar_sgm/core/image.hpp"
 
 namespace lidar_sgm {
-namespace {
-
-int floorDivide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-int ceilDivide(int a, int b) { return -floorDivide(-a, b); }
-
-constexpr std::int16_t kNoLowest = std::numeric_limits<std::int16_t>::max();
-constexpr std::int16_t kNoHighest = std::numeric_limits<std::int16_t>::min();
-
-// A point's x16 disparity in 16 bits. Clamping changes no window: the range's ends, x16, lie
-// within +-16384 (minDisparity and numDisparities are at most 512 in magnitude) and the margin is
-// at most 512 px, so a value beyond +-32767 and its clamped value fall on the same side of the
-// range, with the same window.
-std::int16_t clamp16(int disparity16) {
-  return static_cast<std::int16_t>(std::clamp<int>(disparity16, kNoHighest, kNoLowest));
-}
-
-}  // namespace
 
 // The neighbourhood is a box: the extremes over +-1 column first (one pass over the points),
 // then over +-rows rows of those, instead of (2 rows + 1) * 3 pixels' points per pixel.
@@ -44,12 +27,12 @@ void lidarSearchExtremes(const LidarPoints& points, int y0, int y1, SearchWindow
   for (int y = y0; y < y1; ++y) {
     std::int16_t* lowest16 = scratch.lowest16.data() + static_cast<std::size_t>(y) * width;
     std::int16_t* highest16 = scratch.highest16.data() + static_cast<std::size_t>(y) * width;
-    std::fill(lowest16, lowest16 + width, kNoLowest);
-    std::fill(highest16, highest16 + width, kNoHighest);
+    std::fill(lowest16, lowest16 + width, kSearchNoLowest);
+    std::fill(highest16, highest16 + width, kSearchNoHighest);
     // A row's points are contiguous: the pixels without any are skipped by their offsets alone.
     for (int x = 0; x < width; ++x) {
       for (const int* d = points.begin(x, y); d != points.end(x, y); ++d) {
-        const std::int16_t value = clamp16(*d);
+        const std::int16_t value = searchClamp16(*d);
         for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
           lowest16[nx] = std::min(lowest16[nx], value);
           highest16[nx] = std::max(highest16[nx], value);
@@ -67,8 +50,8 @@ void lidarSearchWindowRows(int minDisparity, int rows, int margin, int y0, int y
   const SearchWindows::Scratch& scratch = windows.scratch();
   for (int y = y0; y < y1; ++y) {
     // The extremes over +-rows rows, a whole row at a time (contiguous: the compiler vectorises it).
-    std::fill(low16, low16 + width, kNoLowest);
-    std::fill(high16, high16 + width, kNoHighest);
+    std::fill(low16, low16 + width, kSearchNoLowest);
+    std::fill(high16, high16 + width, kSearchNoHighest);
     for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
       const std::int16_t* lowRow = scratch.lowest16.data() + static_cast<std::size_t>(ny) * width;
       const std::int16_t* highRow = scratch.highest16.data() + static_cast<std::size_t>(ny) * width;
@@ -79,16 +62,8 @@ void lidarSearchWindowRows(int minDisparity, int rows, int margin, int y0, int y
     }
     for (int x = 0; x < width; ++x) {
       int first = 0;
-      int count = numDisparities;  // no point: the LiDAR does not constrain this pixel
-      if (low16[x] <= high16[x]) {
-        const int lowest = std::max(0, floorDivide(low16[x], kDisparityScale) - margin - minDisparity);
-        const int last =
-            std::min(numDisparities - 1, ceilDivide(high16[x], kDisparityScale) + margin - minDisparity);
-        if (lowest <= last) {  // else every point lies outside the range: nothing to narrow it to
-          count = std::min(numDisparities, (last - lowest + 1 + 15) / 16 * 16);
-          first = std::min(lowest, numDisparities - count);
-        }
-      }
+      int count = 0;
+      searchWindowOf(low16[x], high16[x], minDisparity, numDisparities, margin, first, count);
       windows.set(x, y, first, count);
     }
   }

@@ -56,20 +56,11 @@ void CpuMatcher::run(const FramePlan& plan, const FrameInputs& in, ImageView<std
   runStages(f, disparity);
 }
 
-// lidarSearchWindows' two passes, each with its rows split among the threads: the vertical
-// pass reads 2 * rows + 1 rows of extremes per row: single-threaded, it cost more than the gate saved.
+// The LiDAR gate (lidar_cost.cpp): its passes split their rows among the threads.
 void CpuMatcher::searchWindows(const Frame& f) {
-  const FramePlan& plan = f.plan;
-  const LidarPoints& points = *f.lidar;
-  prepareLidarSearchWindows(points, plan.D, windows_);
-  parallelRanges(plan.height, f.threads, [&](int y0, int y1) { lidarSearchExtremes(points, y0, y1, windows_); });
-  const std::size_t width = static_cast<std::size_t>(plan.width);
-  windowRows_.resize(2 * width * static_cast<std::size_t>(f.threads));
-  parallelRanges(plan.height, f.threads, [&](int y0, int y1) {
-    std::int16_t* low16 = windowRows_.data() + 2 * width * static_cast<std::size_t>(threadIndex());
-    lidarSearchWindowRows(plan.minDisparity, plan.params.gatedSearchRows, plan.params.gatedSearchMargin, y0, y1,
-                          low16, low16 + width, windows_);
-  });
+  const Parameters& p = f.plan.params;
+  lidarSearchWindows(*f.lidar, f.plan.minDisparity, f.plan.D, p.gatedSearchRows, p.gatedSearchMargin, windows_,
+                     f.threads);
 }
 
 // The third camera's census image, and the layout of the right census planes. The pair's census

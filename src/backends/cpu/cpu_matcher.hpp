@@ -179,7 +179,6 @@ class CpuMatcher final : public MatcherBackend {
   std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
   SearchWindows windows_;  // the gated search's windows (Parameters::gatedSearch)
-  std::vector<std::int16_t> windowRows_;  // ... each thread's two rows of their vertical pass
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;
   Image<std::int16_t> rightIndex_;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "backends/common/search_windows.hpp"
 #include "backends/common/stages.hpp"
 #include "lidar_sgm/core/confidence.hpp"
 #include "lidar_sgm/core/matcher.hpp"
@@ -37,6 +38,10 @@ void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDi
                ImageView<std::uint8_t> support, int threads);
 
 void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> coverage, int threads);
+
+/// The LiDAR gate's windows (lidar_search_windows.hpp), its two passes on `threads` threads.
+void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
+                        SearchWindows& windows, int threads);
 
 void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo,
                ImageView<const std::uint8_t> support, int alphaWeight256, bool stereoCostWithoutLidar,

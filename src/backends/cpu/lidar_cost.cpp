@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "backends/common/lidar_search_windows.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
@@ -111,6 +112,24 @@ void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> 
         coverage(x, y) = covered ? 1 : 0;
       }
     }
+  });
+}
+
+// lidarSearchWindows' two passes, each with its rows split among the threads (single-threaded,
+// the vertical pass's 2 * rows + 1 rows of extremes per row cost more than the gate saved); each
+// thread's two rows of that pass in the windows' scratch.
+void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
+                        SearchWindows& windows, int threads) {
+  prepareLidarSearchWindows(points, numDisparities, windows);
+  parallelRanges(points.height(), threads, [&](int y0, int y1) { lidarSearchExtremes(points, y0, y1, windows); });
+  const std::size_t width = static_cast<std::size_t>(points.width());
+  SearchWindows::Scratch& scratch = windows.scratch();
+  scratch.rowLowest16.resize(width * static_cast<std::size_t>(std::max(1, threads)));
+  scratch.rowHighest16.resize(width * static_cast<std::size_t>(std::max(1, threads)));
+  parallelRanges(points.height(), threads, [&](int y0, int y1) {
+    const std::size_t part = width * static_cast<std::size_t>(threadIndex());
+    lidarSearchWindowRows(minDisparity, rows, margin, y0, y1, scratch.rowLowest16.data() + part,
+                          scratch.rowHighest16.data() + part, windows);
   });
 }
 

@@ -7,7 +7,6 @@
 
 #include <cuda_runtime_api.h>
 
-#include "backends/common/lidar_search_windows.hpp"
 #include "backends/common/lidar_weights.hpp"
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/kernels.hpp"
@@ -120,8 +119,8 @@ void CudaMatcher::runStages(const FramePlan& plan, const FrameInputs& in, ImageV
   if (outputOnDevice) frame.filtered = DeviceImage<std::int16_t>{disparity.data, plan.width, plan.height, disparity.stride};
   uploadCameras(plan, in, inputsOnDevice, frame);
   if (plan.useLidar) uploadLidar(plan, *in.lidar, frame);
-  if (plan.gatedSearch) uploadWindows(plan, *in.lidar, frame);
   dev.mark(kUploaded);
+  if (plan.gatedSearch) searchWindows(plan, frame);
   censusTransforms(plan, frame);
   dev.mark(kCensus);
   if (plan.useLidar) cuda::lidarSupport(frame.costs.lidar, frame.support, dev.stream);
@@ -233,13 +232,19 @@ void CudaMatcher::uploadLidar(const FramePlan& plan, const LidarPoints& lidar, F
 
 // The gated search's windows, as cpu_ref and cpu compute them; the host copy lives in Device
 // until the next frame, so the asynchronous upload reads it whole.
-void CudaMatcher::uploadWindows(const FramePlan& plan, const LidarPoints& lidar, FrameImages& f) {
+// The gate's windows from the points on the device (uploadLidar ran before): nothing computed on
+// the host or uploaded.
+void CudaMatcher::searchWindows(const FramePlan& plan, FrameImages& f) {
   Device& dev = *device_;
   const Parameters& p = plan.params;
-  lidarSearchWindows(lidar, plan.minDisparity, plan.D, p.gatedSearchRows, p.gatedSearchMargin, dev.hostWindows);
-  uploadImage(dev.hostWindows.firsts(), dev.windowFirst, dev.stream);
-  uploadImage(dev.hostWindows.counts(), dev.windowCount, dev.stream);
-  f.windows = DeviceWindows{dev.windowFirst.data(), dev.windowCount.data()};
+  const int W = plan.width;
+  const int H = plan.height;
+  const auto first = denseImage<std::int16_t>(dev.windowFirst, W, H);
+  const auto count = denseImage<std::int16_t>(dev.windowCount, W, H);
+  cuda::lidarSearchWindows(f.costs.lidar, plan.minDisparity, plan.D, p.gatedSearchRows, p.gatedSearchMargin,
+                           denseImage<std::int16_t>(dev.windowLowest, W, H),
+                           denseImage<std::int16_t>(dev.windowHighest, W, H), first, count, dev.stream);
+  f.windows = DeviceWindows{first.data, count.data};
 }
 
 void CudaMatcher::censusTransforms(const FramePlan& plan, FrameImages& f) {

@@ -38,7 +38,7 @@ class CudaMatcher final : public MatcherBackend {
   void reserveImages(const FramePlan& plan, FrameImages& frame);
   void uploadCameras(const FramePlan& plan, const FrameInputs& in, bool inputsOnDevice, FrameImages& frame);
   void uploadLidar(const FramePlan& plan, const LidarPoints& lidar, FrameImages& frame);
-  void uploadWindows(const FramePlan& plan, const LidarPoints& lidar, FrameImages& frame);
+  void searchWindows(const FramePlan& plan, FrameImages& frame);
   void censusTransforms(const FramePlan& plan, FrameImages& frame);
   void aggregatePaths(const FramePlan& plan, FrameImages& frame);
   void selectDisparity(const FramePlan& plan, FrameImages& frame);

@@ -186,6 +186,27 @@ void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> 
   toHost(out, coverage);
 }
 
+void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
+                        SearchWindows& windows) {
+  const DeviceLidarCopy lidar = toDevice(points);
+  const int W = points.width();
+  const int H = points.height();
+  auto lowest = allocateLike<std::int16_t>(W, H, W);
+  auto highest = allocateLike<std::int16_t>(W, H, W);
+  auto first = allocateLike<std::int16_t>(W, H, W);
+  auto count = allocateLike<std::int16_t>(W, H, W);
+  cuda::lidarSearchWindows(lidar.lidar, minDisparity, numDisparities, rows, margin, lowest.image, highest.image,
+                           first.image, count.image, nullptr);
+  Image<std::int16_t> firsts(W, H);
+  Image<std::int16_t> counts(W, H);
+  toHost(first, firsts.view());
+  toHost(count, counts.view());
+  windows.resize(W, H, numDisparities);
+  for (int y = 0; y < H; ++y) {
+    for (int x = 0; x < W; ++x) windows.set(x, y, firsts(x, y), counts(x, y));
+  }
+}
+
 void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo, ImageView<const std::uint8_t> support,
                ImageView<const std::uint16_t> weights, bool stereoCostWithoutLidar, MatchingCostVolume& fused) {
   const auto l = toDevice(lidar);

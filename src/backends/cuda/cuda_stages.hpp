@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "backends/common/search_windows.hpp"
 #include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
@@ -28,6 +29,8 @@ void combineCameraCosts(const MatchingCostVolume& horizontal, const MatchingCost
 void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDisparity, MatchingCostVolume& cost,
                ImageView<std::uint8_t> support);
 void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> coverage);
+void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
+                        SearchWindows& windows);
 void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo, ImageView<const std::uint8_t> support,
                ImageView<const std::uint16_t> weights, bool stereoCostWithoutLidar, MatchingCostVolume& fused);
 void fuseCosts(const MatchingCostVolume& lidar, const MatchingCostVolume& stereo, ImageView<const std::uint8_t> support,

@@ -28,6 +28,12 @@ void lidarPixelStarts(const int* pointPixels, int count, int pixels, int* pixelS
 void lidarSupport(DeviceLidar lidar, DeviceImage<std::uint8_t> support, cudaStream_t stream);
 /// 1 where a point lies within +-1 column and +-rows rows (the left-right check spares it).
 void lidarCoverage(DeviceLidar lidar, int rows, DeviceImage<std::uint8_t> coverage, cudaStream_t stream);
+// search_windows.cu: the LiDAR gate's windows (lidar_search_windows.hpp) of every pixel into
+// first and count (W x H each), the host's bit for bit; lowest and highest (W x H each) are the
+// first pass's scratch.
+void lidarSearchWindows(DeviceLidar lidar, int minDisparity, int numDisparities, int rows, int margin,
+                        DeviceImage<std::int16_t> lowest, DeviceImage<std::int16_t> highest,
+                        DeviceImage<std::int16_t> first, DeviceImage<std::int16_t> count, cudaStream_t stream);
 
 // cost_volume.cu: the matching cost as a volume, stored once per frame for the path recursion
 // (CostPart::Matching); the parts alone let each cost be tested against cpu_ref's volume.

@@ -9,7 +9,6 @@
 #include <cuda_runtime_api.h>
 
 #include "backends/common/lidar_cost_table.hpp"
-#include "backends/common/search_windows.hpp"
 #include "backends/cuda/cuda_error.hpp"
 #include "backends/cuda/cuda_matcher.hpp"
 #include "backends/cuda/device_buffer.hpp"
@@ -51,11 +50,12 @@ struct CudaMatcher::Device {
   DeviceBuffer<std::uint8_t> table;
   DeviceBuffer<std::uint16_t> weights;  // adaptive alpha only
   DeviceBuffer<std::uint8_t> coverage;
-  // The gated search's windows, computed on the host (lidarSearchWindows, shared with the CPU
-  // backends) and uploaded per frame.
-  SearchWindows hostWindows;
+  // The gated search's windows (search_windows.cu), computed on the device from the points, and
+  // the extremes of its first pass.
   DeviceBuffer<std::int16_t> windowFirst;
   DeviceBuffer<std::int16_t> windowCount;
+  DeviceBuffer<std::int16_t> windowLowest;
+  DeviceBuffer<std::int16_t> windowHighest;
   DeviceBuffer<std::uint8_t> matchingCost;  // C, W x H x D bytes (cost_volume.cu)
   // One L_r volume per path, in 8 bits where the frame's path costs fit (kernels.hpp), else 16;
   // only the one a frame uses is allocated.
