@@ -484,6 +484,8 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
               "Densifier alone / with SGBM |\n"
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   std::fflush(stdout);
+  double fullSgbmMs = 0.0;  // OpenCV's full-scale frame and our half-scale one, when both ran
+  double halfFrameMs = 0.0;
   for (const auto& config : wholeFrameConfigs()) {
     bool wanted = keys.empty();
     for (const std::string& key : keys) wanted = wanted || key == config.first;
@@ -513,6 +515,13 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
                 m.frameMs, m.projectMs, m.matchMs, m.witnessMs, m.kernelMs, m.reprojectMs, m.paired.sgbmMs, m.paired.ratio,
                 m.cloudPoints, m.densifierPeakRssMiB, peak);
     std::fflush(stdout);
+    (scale == 1.0f ? fullSgbmMs : halfFrameMs) = scale == 1.0f ? m.paired.sgbmMs : m.frameMs;
+  }
+  if (fullSgbmMs > 0.0 && halfFrameMs > 0.0) {
+    // A user who halves the scale to go faster compares with OpenCV on the pair they have.
+    std::printf("\nhalf scale against OpenCV's frame at full scale (separate medians of this run): %.2f ms / %.2f ms "
+                "= %.2f\nresult config=densifier_half_vs_full_sgbm half_frame_ms=%.3f full_sgbm_ms=%.3f ratio=%.3f\n",
+                halfFrameMs, fullSgbmMs, halfFrameMs / fullSgbmMs, halfFrameMs, fullSgbmMs, halfFrameMs / fullSgbmMs);
   }
   std::printf("\nframe ms: wall clock around Densifier::run, median; project, match, reproject: its "
               "DensificationTimings; stereo witness: the hidden-LiDAR filter's stereo-only match; core stages: "

@@ -88,6 +88,12 @@ TEST_F(BenchWholeFrame, TimesTheCloudTheDensifyToolWrites) {
   }
   EXPECT_EQ(full.at("scale"), "1");
   EXPECT_EQ(half.at("scale"), "0.5");
+  // The half-scale frame against OpenCV's full-scale one, from the two rows' medians.
+  const auto across = resultLine(r.output, "densifier_half_vs_full_sgbm");
+  ASSERT_FALSE(across.empty()) << r.output;
+  EXPECT_EQ(std::stod(across.at("half_frame_ms")), std::stod(half.at("frame_ms")));
+  EXPECT_EQ(std::stod(across.at("full_sgbm_ms")), std::stod(full.at("sgbm_ms")));
+  EXPECT_NEAR(std::stod(across.at("ratio")), std::stod(half.at("frame_ms")) / std::stod(full.at("sgbm_ms")), 1e-3);
 
   if (!*test::kDensifyTool) return;
   const fs::path out = fs::temp_directory_path() / ("lidar_sgm_bench_whole_" + std::to_string(::getpid()) + ".pcd");
