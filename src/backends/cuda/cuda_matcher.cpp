@@ -230,8 +230,6 @@ void CudaMatcher::uploadLidar(const FramePlan& plan, const LidarPoints& lidar, F
   s.stereoCostWithoutLidar = p.stereoCostWithoutLidar;
 }
 
-// The gated search's windows, as cpu_ref and cpu compute them; the host copy lives in Device
-// until the next frame, so the asynchronous upload reads it whole.
 // The gate's windows from the points on the device (uploadLidar ran before): nothing computed on
 // the host or uploaded.
 void CudaMatcher::searchWindows(const FramePlan& plan, FrameImages& f) {
