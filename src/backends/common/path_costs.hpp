@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "backends/common/cost_volume.hpp"
 #include "backends/common/stages.hpp"
 #include "core/frame_plan.hpp"
 
@@ -19,6 +20,12 @@ inline int largestMatchingCost(const FramePlan& plan) {
     case MatchMode::Fused: break;
   }
   return std::max(kMaxCensusCost, plan.params.lidarCostCap);
+}
+
+/// The largest matching cost a stored volume holds (0 when empty): what a stage that is handed a
+/// volume, not a frame's plan, bounds its path costs with.
+inline int largestMatchingCost(const MatchingCostVolume& cost) {
+  return cost.size() == 0 ? 0 : *std::max_element(cost.data(), cost.data() + cost.size());
 }
 
 /// The largest path cost: L_r(p, d) = C(p, d) + min(...) - min_k L_r(p - r, k) lies in

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "backends/common/host_device.hpp"
+#include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
 
@@ -23,8 +24,6 @@ LIDAR_SGM_HOST_DEVICE inline std::int16_t searchClamp16(int disparity16) {
                                                                    : disparity16);
 }
 
-LIDAR_SGM_HOST_DEVICE inline int searchFloorDivide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
 /// The window [first, first + count) of disparity indices of a pixel whose neighbourhood's points
 /// span x16 disparities [low16, high16] (low16 > high16: no point): the whole range without a
 /// point or when every point lies outside the range, else [floor(low) - margin, ceil(high) +
@@ -35,9 +34,8 @@ LIDAR_SGM_HOST_DEVICE inline void searchWindowOf(int low16, int high16, int minD
   first = 0;
   count = numDisparities;
   if (low16 > high16) return;
-  const int scale = 16;  // kDisparityScale
-  const int below = searchFloorDivide(low16, scale) - margin - minDisparity;
-  const int above = -searchFloorDivide(-high16, scale) + margin - minDisparity;  // ceil(high16 / 16)
+  const int below = floorDivide(low16, kDisparityScale) - margin - minDisparity;
+  const int above = -floorDivide(-high16, kDisparityScale) + margin - minDisparity;  // ceil(high16 / 16)
   const int lowest = below > 0 ? below : 0;
   const int last = above < numDisparities - 1 ? above : numDisparities - 1;
   if (lowest > last) return;  // every point lies outside the range: nothing to narrow it to

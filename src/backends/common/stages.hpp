@@ -26,6 +26,9 @@ constexpr int kMaxCensusCost = 62;
 /// distance of two unrelated census strings, i.e. "no information", favouring no disparity.
 constexpr int kNoCounterpartCensusCost = kMaxCensusCost / 2;
 
+/// a / b rounded toward minus infinity (b > 0), as C++'s / is not for a negative a.
+LIDAR_SGM_HOST_DEVICE inline int floorDivide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
 /// Triple-SGM: the vertical disparity [rows] of the absolute horizontal disparity `d`,
 /// dv = (d * ratio16 + 32768) >> 16, i.e. d * b_up / b rounded half up (floor, also for d < 0).
 LIDAR_SGM_HOST_DEVICE inline int verticalDisparity(int d, int ratio16) {

@@ -76,16 +76,6 @@ HWY_INLINE void StepBlock(DT d, int i, const std::uint8_t* HWY_RESTRICT cost, co
   minimum = hn::Min(minimum, L);
 }
 
-#if HWY_MAX_BYTES >= 32
-// Halves a vector's lanes by the minimum of its halves (the next narrower block's accumulator).
-template <class DT>
-HWY_INLINE hn::Vec<hn::Half<DT>> MinOfHalves(DT d, hn::Vec<DT> v) {
-  const hn::Half<DT> dh;
-  (void)d;
-  return hn::Min(hn::LowerHalf(dh, v), hn::UpperHalf(dh, v));
-}
-#endif
-
 // One step of Eq. 1 for every d: out[d] = C(d) + min(prev[d], prev[d-1] + P1, prev[d+1] + P1,
 // prevMin + P2) - prevMin. `prev` and `out` point at d = 0 of a slot (sentinels at -1 and D).
 // Returns min_d out[d]. Blocks of the widest vector first (64 bytes where the target has them),
@@ -423,8 +413,7 @@ void aggregatePathsT(const MatchingCostVolume& cost, int P1, int P2, int paths, 
 void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum,
                     int threads) {
   // The volume does not say which costs it holds: its largest value bounds them.
-  const int maxCost = cost.size() == 0 ? 0 : *std::max_element(cost.data(), cost.data() + cost.size());
-  if (pathCostsFit8Bits(maxCost, P2)) {
+  if (pathCostsFit8Bits(largestMatchingCost(cost), P2)) {
     aggregatePathsT<std::uint8_t>(cost, P1, P2, paths, sum, threads);
   } else {
     aggregatePathsT<std::uint16_t>(cost, P1, P2, paths, sum, threads);

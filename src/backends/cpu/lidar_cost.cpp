@@ -12,12 +12,6 @@
 
 namespace lidar_sgm {
 namespace cpu {
-namespace {
-
-int floorDivide(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
-}  // namespace
-
 LidarCostRows::LidarCostRows(const LidarCostTable& table)
     : cap_(table.cap()), reach_(static_cast<int>(table.entries().size())) {
   // table(16 j - reach - r) is below the cap only while |16 j - reach - r| < reach, i.e.
@@ -117,24 +111,20 @@ void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> 
 
 // lidarSearchWindows' two passes, each with its rows split among the threads (single-threaded,
 // the vertical pass's 2 * rows + 1 rows of extremes per row cost more than the gate saved); each
-// range's two rows of that pass in the windows' scratch, found from the range itself (not from the
-// thread's number, which a caller's own parallel region would make ambiguous).
+// range's two rows of that pass in the windows' scratch.
 void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisparities, int rows, int margin,
                         SearchWindows& windows, int threads) {
   const int height = points.height();
   prepareLidarSearchWindows(points, numDisparities, windows);
   parallelRanges(height, threads, [&](int y0, int y1) { lidarSearchExtremes(points, y0, y1, windows); });
-  const int parts = std::max(1, std::min(threads, height));  // parallelRanges' ranges
   const std::size_t width = static_cast<std::size_t>(points.width());
   SearchWindows::Scratch& scratch = windows.scratch();
-  scratch.rowLowest16.resize(width * static_cast<std::size_t>(parts));
-  scratch.rowHighest16.resize(width * static_cast<std::size_t>(parts));
-  parallelRanges(height, threads, [&](int y0, int y1) {
-    int range = 0;
-    while (range + 1 < parts && partBegin(height, parts, range + 1) <= y0) ++range;
-    const std::size_t part = width * static_cast<std::size_t>(range);
-    lidarSearchWindowRows(minDisparity, rows, margin, y0, y1, scratch.rowLowest16.data() + part,
-                          scratch.rowHighest16.data() + part, windows);
+  scratch.rowLowest16.resize(width * static_cast<std::size_t>(rangeCount(height, threads)));
+  scratch.rowHighest16.resize(width * static_cast<std::size_t>(rangeCount(height, threads)));
+  parallelParts(height, threads, [&](int part, int y0, int y1) {
+    const std::size_t offset = width * static_cast<std::size_t>(part);
+    lidarSearchWindowRows(minDisparity, rows, margin, y0, y1, scratch.rowLowest16.data() + offset,
+                          scratch.rowHighest16.data() + offset, windows);
   });
 }
 

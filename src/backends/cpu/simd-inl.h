@@ -32,16 +32,25 @@ HWY_INLINE hwy::HWY_NAMESPACE::Vec<D16> LoadAsU16(const T* p) {
   }
 }
 
+#if HWY_MAX_BYTES >= 32
+// The lane-wise minimum of a vector's two halves: a running minimum carried to the next narrower
+// block, or the first step of a reduction.
+template <class DT>
+HWY_INLINE hwy::HWY_NAMESPACE::Vec<hwy::HWY_NAMESPACE::Half<DT>> MinOfHalves(DT /* d */,
+                                                                          hwy::HWY_NAMESPACE::Vec<DT> v) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  const hn::Half<DT> dh;
+  return hn::Min(hn::LowerHalf(dh, v), hn::UpperHalf(dh, v));
+}
+#endif
+
 // The smallest of a D16 vector's lanes. Highway's MinOfLanes of a 32-byte vector of uint16 takes
 // about ten shuffles and minima; halving it to 16 bytes first leaves one PHMINPOSUW (x86), and
 // the winner search runs this once a pixel.
 HWY_INLINE unsigned MinLaneU16(hwy::HWY_NAMESPACE::Vec<D16> v) {
   namespace hn = hwy::HWY_NAMESPACE;
 #if HWY_MAX_BYTES >= 32
-  const D16 d16;
-  const hn::Half<D16> half;
-  (void)d16;
-  return hn::GetLane(hn::MinOfLanes(half, hn::Min(hn::LowerHalf(half, v), hn::UpperHalf(half, v))));
+  return hn::GetLane(hn::MinOfLanes(hn::Half<D16>(), MinOfHalves(D16(), v)));
 #else
   return hn::GetLane(hn::MinOfLanes(D16(), v));
 #endif

@@ -247,10 +247,8 @@ void aggregateThrough(const MatchingCostVolume& cost, int P1, int P2, int paths,
 }  // namespace
 
 void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum) {
-  // The volume does not say which costs it holds: its largest value bounds them (as the cpu
-  // backend's stage decides).
-  const int maxCost = cost.size() == 0 ? 0 : *std::max_element(cost.data(), cost.data() + cost.size());
-  if (pathCostsFit8Bits(maxCost, P2)) {
+  // The volume does not say which costs it holds: its largest value bounds them.
+  if (pathCostsFit8Bits(largestMatchingCost(cost), P2)) {
     aggregateThrough<std::uint8_t>(cost, P1, P2, paths, sum);
   } else {
     aggregateThrough<std::uint16_t>(cost, P1, P2, paths, sum);
