@@ -8,7 +8,7 @@
 // element is computed by exactly the same arithmetic whichever thread owns it, so the result
 // never depends on the number of threads. Without OpenMP the backend runs on one thread.
 
-#include <algorithm>
+#include "core/parallel_ranges.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -17,26 +17,10 @@
 namespace lidar_sgm {
 namespace cpu {
 
-/// The t-th of `parts` contiguous ranges of [0, count): [begin, end).
-inline int partBegin(int count, int parts, int t) {
-  return static_cast<int>(static_cast<long long>(count) * t / parts);
-}
+using lidar_sgm::parallelParts;
+using lidar_sgm::partBegin;
+using lidar_sgm::rangeCount;
 
-/// How many ranges parallelRanges splits [0, count) into for `threads`.
-inline int rangeCount(int count, int threads) { return std::max(1, std::min(threads, count)); }
-/// Runs body(part, begin, end) on rangeCount(count, threads) fixed contiguous ranges of [0, count),
-/// in parallel; `part` numbers the range (for per-range scratch: a thread's number would not, in a
-/// caller's own parallel region).
-template <typename Body>
-void parallelParts(int count, int threads, const Body& body) {
-  const int parts = rangeCount(count, threads);
-  if (parts == 1) {
-    body(0, 0, count);
-    return;
-  }
-#pragma omp parallel for num_threads(parts) schedule(static, 1)
-  for (int t = 0; t < parts; ++t) body(t, partBegin(count, parts, t), partBegin(count, parts, t + 1));
-}
 /// Runs body(begin, end) on `threads` fixed contiguous ranges of [0, count), in parallel.
 template <typename Body>
 void parallelRanges(int count, int threads, const Body& body) {
