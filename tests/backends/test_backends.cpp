@@ -331,6 +331,53 @@ TEST_P(BackendStages, LidarCostSupportCoverageAndFusion) {
   }
 }
 
+// The gate's windows at the ends of the rule (search_window_rule.hpp): points outside the range
+// on either side, x16 values at and beyond 16 bits (clamped), negative and odd range starts, the
+// smallest and largest ranges and margins, pixels with no point and rows with none.
+TEST_P(BackendStages, LidarSearchWindowsAtTheRulesEnds) {
+  struct Gate {
+    int width, height, minDisparity, numDisparities, rows, margin;
+  };
+  const Gate gates[] = {{37, 11, 0, 16, 1, 0},     {70, 23, -16, 48, 3, 5},   {129, 19, 7, 512, 2, 512},
+                        {33, 9, -256, 512, 0, 1},  {100, 30, 13, 64, 6, 12}};
+  std::mt19937 engine(29);
+  for (const Gate& g : gates) {
+    // x16 disparities (a point's is positive) from below the range to beyond the 16 bits the rule
+    // keeps.
+    std::uniform_int_distribution<int> wide(1, 40000);
+    const int low = std::max(1, g.minDisparity * 16 - 200);
+    std::uniform_int_distribution<int> inside(low, std::max(low + 400, (g.minDisparity + g.numDisparities) * 16 + 200));
+    std::uniform_int_distribution<int> column(0, g.width - 1);
+    std::uniform_int_distribution<int> row(0, g.height - 1);
+    std::vector<LidarSample> samples;
+    for (int i = 0; i < g.width * g.height / 6; ++i) {
+      const int y = row(engine);
+      if (y % 5 == 2) continue;  // rows without points
+      const int pick = static_cast<int>(engine() % 8);
+      const int value = pick == 0 ? wide(engine) : pick == 1 ? 32767 + static_cast<int>(engine() % 3) : inside(engine);
+      samples.push_back({column(engine), y, value});
+    }
+    LidarPoints points;
+    points.assign(g.width, g.height, samples);
+    SearchWindows expected, actual;
+    lidarSearchWindows(points, g.minDisparity, g.numDisparities, g.rows, g.margin, expected);
+    stages_.lidarSearchWindows(points, g.minDisparity, g.numDisparities, g.rows, g.margin, actual);
+    int differences = 0;
+    int narrowed = 0;
+    for (int y = 0; y < g.height; ++y) {
+      for (int x = 0; x < g.width; ++x) {
+        if (expected.first(x, y) != actual.first(x, y) || expected.count(x, y) != actual.count(x, y)) ++differences;
+        narrowed += expected.count(x, y) < g.numDisparities ? 1 : 0;
+      }
+    }
+    EXPECT_EQ(differences, 0) << g.width << "x" << g.height << " range " << g.minDisparity << "+" << g.numDisparities
+                              << " rows " << g.rows << " margin " << g.margin;
+    if (g.numDisparities > 16 && g.margin < 512) {
+      EXPECT_GT(narrowed, 0) << "no window narrowed: the case tests nothing";
+    }
+  }
+}
+
 // A cost volume with every value of [0, maxCost], random, as the aggregation's input.
 MatchingCostVolume randomCosts(int width, int height, int D, int maxCost, unsigned seed) {
   MatchingCostVolume cost(width, height, D);

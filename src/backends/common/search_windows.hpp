@@ -43,6 +43,9 @@ class SearchWindows {
   /// The windows of row y, for a backend that walks rows: first and count of pixel x at [x].
   const std::int16_t* firstRow(int y) const { return first_.view().row(y); }
   const std::int16_t* countRow(int y) const { return count_.view().row(y); }
+  /// Row y's windows to write whole (a caller that sets every pixel of the row).
+  std::int16_t* firstRowToSet(int y) { return first_.view().row(y); }
+  std::int16_t* countRowToSet(int y) { return count_.view().row(y); }
   void set(int x, int y, int first, int count) {
     first_(x, y) = static_cast<std::int16_t>(first);
     count_(x, y) = static_cast<std::int16_t>(count);

@@ -97,20 +97,29 @@ HWY_INLINE void HammingPixel(DU8 d, std::uint64_t left, const std::uint8_t* plan
 
 // The costs of disparity indices [first, first + count) (count a multiple of 16) into out[0 ..
 // count): the whole range, or a gated pixel's window. Whole vectors of the target (64 disparities
-// a step with AVX-512, 32 with AVX2), then 16 at a time for the rest.
+// a step with AVX-512, 32 with AVX2), then at most one of 32 (AVX-512), then 16: a gated window of
+// 32 (the usual one: its points' span plus the margins, rounded up to 16) is one step, not two;
+// each step's cost is mostly the census bytes' broadcasts and loads, whatever its width.
 template <int kBytes, Fusion kFusion>
 HWY_INLINE void CostPixel(std::uint64_t left, const std::uint8_t* planes, std::size_t planeStride, int first,
                           int count, int dBegin, int dEnd, const std::uint8_t* lidar, int alphaWeight256,
                           std::uint8_t* out) {
   const hn::CappedTag<std::uint8_t, 64> dWide;
+  const hn::CappedTag<std::uint8_t, 32> d32;
   const hn::CappedTag<std::uint8_t, 16> d16;
   const int N = static_cast<int>(hn::Lanes(dWide));
-  const int whole = count / N * N;
-  HammingPixel<kBytes, kFusion>(dWide, left, planes, planeStride, first, whole, dBegin, dEnd, lidar, alphaWeight256,
+  int done = count / N * N;
+  HammingPixel<kBytes, kFusion>(dWide, left, planes, planeStride, first, done, dBegin, dEnd, lidar, alphaWeight256,
                                 out);
-  if (whole < count) {
-    HammingPixel<kBytes, kFusion>(d16, left, planes, planeStride, first + whole, count - whole, dBegin, dEnd, lidar,
-                                  alphaWeight256, out + whole);
+  const int N32 = static_cast<int>(hn::Lanes(d32));
+  if (N32 < N && count - done >= N32) {
+    HammingPixel<kBytes, kFusion>(d32, left, planes, planeStride, first + done, N32, dBegin, dEnd, lidar,
+                                  alphaWeight256, out + done);
+    done += N32;
+  }
+  if (done < count) {
+    HammingPixel<kBytes, kFusion>(d16, left, planes, planeStride, first + done, count - done, dBegin, dEnd, lidar,
+                                  alphaWeight256, out + done);
   }
 }
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "backends/common/search_windows.hpp"
 #include "backends/common/stages.hpp"
 
 namespace lidar_sgm {
@@ -104,6 +105,11 @@ class LidarCostRows {
   int width_ = 0;
   std::vector<std::uint8_t> rows_;
 };
+
+// search_window_rows.cpp: lidarSearchWindowRows (lidar_search_windows.hpp), the same windows bit
+// for bit, a vector of pixels at a time.
+void searchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
+                      std::int16_t* high16, SearchWindows& windows);
 
 // lidar_cost.cpp: C_L (Eq. 4) of pixel (x, y) into cost[0 .. D-1]; returns whether a point
 // touches the pixel (false: every cost is 0, no information).
