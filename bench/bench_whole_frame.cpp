@@ -83,7 +83,7 @@ WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend
   densifier.setStereoPair(frame.pair.left.view(), frame.pair.right.view());
   densifier.setColorImage(frame.color.view());
 
-  std::vector<double> project, match, reproject, kernel, confidence, witness;
+  std::vector<double> project, match, reproject, kernel, confidence, witness, filters;
   int frames = 0;
   const auto oneFrame = [&] {
     densifier.run(frame.points);
@@ -96,6 +96,7 @@ WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend
     project.push_back(t.project);
     match.push_back(t.match);
     witness.push_back(t.witness);
+    filters.push_back(t.filters);
     reproject.push_back(t.reproject);
     kernel.push_back(stages.total() - stages.transfers);
     confidence.push_back(stages.confidence);
@@ -113,6 +114,7 @@ WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend
   m.projectMs = median(project);
   m.matchMs = median(match);
   m.witnessMs = median(witness);
+  m.filtersMs = median(filters);
   m.reprojectMs = median(reproject);
   m.kernelMs = median(kernel);
   m.confidenceMs = median(confidence);

@@ -42,6 +42,7 @@ struct WholeFrameMeasurement {
   double witnessMs = 0;    ///< DensificationTimings::witness: part of match, the hidden-LiDAR filter's stereo match
   double kernelMs = 0;     ///< the core's stages (StageTimings::total() - transfers)
   double confidenceMs = 0; ///< StageTimings::confidence: the core's part of the confidence
+  double filtersMs = 0;    ///< DensificationTimings::filters: part of match, the passes after the matcher
   PairedTiming paired;     ///< Densifier::run against cv::StereoSGBM::compute, frame by frame
   std::size_t cloudPoints = 0;
   double densifierPeakRssMiB = 0;  ///< the process's peak RSS after three Densifier frames, before any OpenCV run

@@ -480,9 +480,9 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
               "after %d warm-up pairs\n",
               toString(backend).c_str(), threads, threads, o.runs, o.warmups);
   std::printf("\n| config | frame ms | project | match | of which stereo witness | of which core stages | of which "
-              "confidence | reproject | disparities | cloud points | OpenCV SGBM ms | paired ratio [min, max] | peak RSS MiB, "
-              "Densifier alone / with SGBM |\n"
-              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+              "confidence | of which filters | reproject | disparities | cloud points | OpenCV SGBM ms | paired ratio [min, "
+              "max] | peak RSS MiB, Densifier alone / with SGBM |\n"
+              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   std::fflush(stdout);
   double fullSgbmMs = 0.0;  // OpenCV's full-scale frame and our half-scale one, when both ran
   double halfFrameMs = 0.0;
@@ -502,17 +502,19 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
         measureWholeFrame(whole, backend, base, scale, sgbmPair, sgbm, o.runs, o.warmups, o.hiddenLidar,
                           o.witnessScale, o.lidarAnchor);
     const double peak = peakRssMiB();
-    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %d | %s | %s (%s, %d disp.) | %.2f [%.2f, %.2f] | %.1f / %.1f |\n",
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %d | %s | %s (%s, %d disp.) | %.2f [%.2f, %.2f] | %.1f / %.1f |\n",
                 config.first.c_str(), ms(m.frameMs).c_str(), ms(m.projectMs).c_str(), ms(m.matchMs).c_str(),
-                ms(m.witnessMs).c_str(), ms(m.kernelMs).c_str(), ms(m.confidenceMs).c_str(), ms(m.reprojectMs).c_str(), m.disparities,
+                ms(m.witnessMs).c_str(), ms(m.kernelMs).c_str(), ms(m.confidenceMs).c_str(), ms(m.filtersMs).c_str(),
+                ms(m.reprojectMs).c_str(), m.disparities,
                 withCommas(m.cloudPoints).c_str(), ms(m.paired.sgbmMs).c_str(),
                 sizeText(sgbmPair.width(), sgbmPair.height()).c_str(), sgbm.numDisparities, m.paired.ratio,
                 m.paired.ratioMin, m.paired.ratioMax, m.densifierPeakRssMiB, peak);
     std::printf("result config=%s backend=%s scale=%g disparities=%d runs=%d frame_ms=%.3f project_ms=%.3f "
-                "match_ms=%.3f witness_ms=%.3f kernel_ms=%.3f reproject_ms=%.3f sgbm_ms=%.3f ratio=%.3f points=%zu "
-                "frame_peak_rss_mib=%.1f peak_rss_mib=%.1f\n",
+                "match_ms=%.3f witness_ms=%.3f kernel_ms=%.3f filters_ms=%.3f reproject_ms=%.3f sgbm_ms=%.3f ratio=%.3f "
+                "points=%zu frame_peak_rss_mib=%.1f peak_rss_mib=%.1f\n",
                 config.first.c_str(), toString(backend).c_str(), static_cast<double>(scale), m.disparities, o.runs,
-                m.frameMs, m.projectMs, m.matchMs, m.witnessMs, m.kernelMs, m.reprojectMs, m.paired.sgbmMs, m.paired.ratio,
+                m.frameMs, m.projectMs, m.matchMs, m.witnessMs, m.kernelMs, m.filtersMs, m.reprojectMs, m.paired.sgbmMs,
+                m.paired.ratio,
                 m.cloudPoints, m.densifierPeakRssMiB, peak);
     std::fflush(stdout);
     (scale == 1.0f ? fullSgbmMs : halfFrameMs) = scale == 1.0f ? m.paired.sgbmMs : m.frameMs;
@@ -525,8 +527,10 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
   }
   std::printf("\nframe ms: wall clock around Densifier::run, median; project, match, reproject: its "
               "DensificationTimings; stereo witness: the hidden-LiDAR filter's stereo-only match; core stages: "
-              "Matcher::lastTimings() of the fused match (match - witness - core stages = the pair check, the "
-              "confidence's inputs, the filters and the minimum confidence); disparities: the range searched "
+              "Matcher::lastTimings() of the fused match; filters: "
+              "the passes after the matcher (the sky and outlier filters, the LiDAR anchor, the minimum confidence); "
+              "match - witness - core stages - filters = the pair check, the LiDAR points dropped and the matcher's "
+              "steps around its stages; disparities: the range searched "
               "(full-resolution px); ratio: Densifier frame / OpenCV frame per pair, median [min, max]. peak RSS: the "
               "process's peak after three Densifier frames run alone (frame_peak_rss_mib in the result lines) and after "
               "the pairs with OpenCV's SGBM, whose buffers add to the Densifier's (peak_rss_mib); the first "
