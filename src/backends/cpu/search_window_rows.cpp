@@ -2,8 +2,8 @@
 // extremes over +-rows rows and its window (search_window_rule.hpp's searchWindowOf), for a
 // whole vector of pixels at once in 16-bit lanes. The rule's branches become masks; every
 // intermediate value fits 16 bits (x16 disparities in [-32768, 32767] give pixel disparities in
-// [-2048, 2048], the margin and the range's ends are at most 512 in magnitude), and ceil(h / 16)
-// is computed without h + 15, which would wrap at the clamped extreme.
+// [-2048, 2048], the margin and the range's ends at most 512 in magnitude: Parameters' limits),
+// and ceil(h / 16) is computed without h + 15, which would wrap at the clamped extreme.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "backends/cpu/search_window_rows.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -14,7 +14,8 @@
 #include <cstdint>
 
 #include "backends/common/search_window_rule.hpp"
-#include "backends/cpu/cpu_stages.hpp"
+#include "backends/common/search_windows.hpp"
+#include "backends/cpu/cpu_kernels.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
