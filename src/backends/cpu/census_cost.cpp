@@ -154,6 +154,67 @@ void CensusCostRowBytes(const std::uint64_t* leftRow, const std::uint8_t* rightP
   }
 }
 
+// The byte planes of census strings xr0 .. xr1-1 (censusPlanes below): plane k at index
+// pad + width - 1 - xr holds byte k of string xr. Sixteen strings at a time as an 8 x 16 byte
+// transpose in 16-byte vectors: each vector's two strings interleaved byte by byte, an 8 x 8
+// transpose of those byte pairs, then each plane's 16 bytes reversed into the planes' reverse
+// column order; the rest one string at a time.
+void CensusPlanesImpl(const std::uint64_t* row, int width, int pad, int xr0, int xr1, std::uint8_t* planes,
+                      std::size_t planeStride) {
+  int xr = xr0;
+#if HWY_TARGET != HWY_SCALAR
+  const hn::Full128<std::uint8_t> d8;
+  const hn::Full128<std::uint16_t> d16;
+  const hn::Full128<std::uint32_t> d32;
+  const hn::Full128<std::uint64_t> d64;
+  // Bytes of strings s, s + 1 as [s.0, (s+1).0, s.1, (s+1).1, ...].
+  alignas(16) static constexpr std::uint8_t kPairs[16] = {0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15};
+  alignas(16) static constexpr std::uint8_t kReverse[16] = {15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0};
+  const auto pairs = hn::Load(d8, kPairs);
+  const auto reverse = hn::Load(d8, kReverse);
+  for (; xr + 16 <= xr1; xr += 16) {
+    hn::Vec<decltype(d16)> v[8];
+    for (int i = 0; i < 8; ++i) {
+      // Lane k of v[i]: byte k of strings xr + 2i and xr + 2i + 1.
+      v[i] = hn::BitCast(d16, hn::TableLookupBytes(hn::LoadU(d8, reinterpret_cast<const std::uint8_t*>(row + xr + 2 * i)),
+                                                   pairs));
+    }
+    // 8 x 8 transpose of the 16-bit lanes: afterwards lane i of t[k] is lane k of v[i].
+    hn::Vec<decltype(d16)> a[8];
+    for (int i = 0; i < 4; ++i) {
+      a[2 * i] = hn::InterleaveLower(d16, v[2 * i], v[2 * i + 1]);
+      a[2 * i + 1] = hn::InterleaveUpper(d16, v[2 * i], v[2 * i + 1]);
+    }
+    hn::Vec<decltype(d32)> b[8];
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        const auto lo = hn::BitCast(d32, a[4 * i + j]);
+        const auto hi = hn::BitCast(d32, a[4 * i + 2 + j]);
+        b[4 * i + 2 * j] = hn::InterleaveLower(d32, lo, hi);
+        b[4 * i + 2 * j + 1] = hn::InterleaveUpper(d32, lo, hi);
+      }
+    }
+    for (int k = 0; k < 4; ++k) {
+      const auto lo = hn::BitCast(d64, b[k]);
+      const auto hi = hn::BitCast(d64, b[4 + k]);
+      const int k0 = 2 * k;  // b[k] and b[4 + k] hold bytes 2k and 2k + 1 of the strings
+      const auto planeLow = hn::BitCast(d8, hn::InterleaveLower(d64, lo, hi));
+      const auto planeHigh = hn::BitCast(d8, hn::InterleaveUpper(d64, lo, hi));
+      const std::size_t at = static_cast<std::size_t>(pad + width - 1 - (xr + 15));
+      hn::StoreU(hn::TableLookupBytes(planeLow, reverse), d8, planes + static_cast<std::size_t>(k0) * planeStride + at);
+      hn::StoreU(hn::TableLookupBytes(planeHigh, reverse), d8,
+                 planes + static_cast<std::size_t>(k0 + 1) * planeStride + at);
+    }
+  }
+#endif
+  for (; xr < xr1; ++xr) {
+    for (int k = 0; k < 8; ++k) {
+      planes[static_cast<std::size_t>(k) * planeStride + static_cast<std::size_t>(pad + width - 1 - xr)] =
+          static_cast<std::uint8_t>(row[xr] >> (8 * k));
+    }
+  }
+}
+
 void CensusCostRowImpl(const std::uint64_t* leftRow, const std::uint8_t* rightPlanes, std::size_t planeStride,
                        int pad, int bytes, int width, int x0, int x1, int minDisparity, int D, const CostFusion* fusion,
                        std::uint8_t* cost, const std::int16_t* windowFirst, const std::int16_t* windowCount,
@@ -177,6 +238,7 @@ namespace lidar_sgm {
 namespace cpu {
 
 HWY_EXPORT(CensusCostRowImpl);
+HWY_EXPORT(CensusPlanesImpl);
 
 int censusPlanePad(int minDisparity, int numDisparities) {
   // Loads reach from plane index minDisparity to width + minDisparity + D + 32 (a vector past).
@@ -185,10 +247,7 @@ int censusPlanePad(int minDisparity, int numDisparities) {
 
 void censusPlanes(const std::uint64_t* row, int width, int pad, int xr0, int xr1, std::uint8_t* planes,
                   std::size_t planeStride) {
-  for (int k = 0; k < 8; ++k) {
-    std::uint8_t* plane = planes + static_cast<std::size_t>(k) * planeStride;
-    for (int xr = xr0; xr < xr1; ++xr) plane[pad + width - 1 - xr] = static_cast<std::uint8_t>(row[xr] >> (8 * k));
-  }
+  HWY_DYNAMIC_DISPATCH(CensusPlanesImpl)(row, width, pad, xr0, xr1, planes, planeStride);
 }
 
 void censusPlanes(const std::uint64_t* row, int width, int pad, std::uint8_t* planes, std::size_t planeStride) {
