@@ -458,7 +458,14 @@ TEST_P(BackendStages, AggregatePathsSelectionAndLeftRightCheck) {
 }
 
 TEST_P(BackendStages, MedianFilterWithInvalidPixels) {
-  for (const StageCase& c : kStageCases) {
+  // The stage cases, and images of 1 to 4 rows, where every 5x5 window is cut by the image's top
+  // or bottom (windows of 1 to 4 rows).
+  std::vector<StageCase> cases(std::begin(kStageCases), std::end(kStageCases));
+  for (const StageCase& c : {StageCase{64, 1, 0, 16}, StageCase{64, 2, 0, 16}, StageCase{41, 3, 0, 16},
+                             StageCase{70, 4, 0, 16}}) {
+    cases.push_back(c);
+  }
+  for (const StageCase& c : cases) {
     std::mt19937 engine(9);
     for (const int invalidOneIn : {1000000, 40, 3}) {
       Image<std::int16_t> in(c.width, c.height);

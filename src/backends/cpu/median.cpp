@@ -222,6 +222,39 @@ void Median5RowInside(ImageView<const std::int16_t> in, int y, std::int16_t* col
   for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
 }
 
+// One output row of the 5x5 median where the window is cut by the top or bottom of the image: its
+// `kRows` rows inside the image (rows first .. first + kRows - 1), 5 kRows values per window, of
+// which the lower median of the valid ones as cpu_ref takes it (a full sort; the invalid marker
+// sorts first). Columns within 2 of the left or right edge take cpu_ref's path.
+template <int kRows>
+void Median5RowCut(ImageView<const std::int16_t> in, int y, int first, std::int16_t* out) {
+  constexpr int n = 5 * kRows;
+  const DI16 d;
+  const int N = static_cast<int>(hn::Lanes(d));
+  const int width = in.width;
+  const auto invalid = hn::Set(d, kInvalidDisparity);
+  const auto medians = [&](int at) {
+    VI16 v[n];
+    auto invalidCount = hn::Zero(d);  // minus the count: a true mask is -1
+    for (int k = 0; k < n; ++k) {
+      v[k] = hn::LoadU(d, in.row(first + k / 5) + at - 2 + k % 5);
+      invalidCount = hn::Add(invalidCount, hn::VecFromMask(d, hn::Eq(v[k], invalid)));
+    }
+    // An invalid pixel stays invalid: the median removes outliers, it does not fill holes.
+    const auto median = SelectValidMedian<n>(v, hn::Neg(invalidCount));
+    hn::StoreU(hn::IfThenElse(hn::Eq(hn::LoadU(d, in.row(y) + at), invalid), invalid, median), d, out + at);
+  };
+  int x = 0;
+  for (; x < 2; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
+  for (; x + N + 2 <= width; x += N) medians(x);
+  if (x < width - 2 && width >= N + 4) {
+    // The last windows inside the columns: one more vector ending there (as Median5RowInside).
+    medians(width - 2 - N);
+    x = width - 2;
+  }
+  for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
+}
+
 // The 3x3 filter's row (the 5x5 filter has Median5RowInside and the scalar rule at its edges).
 template <int size>
 void MedianRowSized(ImageView<const std::int16_t> in, int y, std::int16_t* out) {
@@ -260,9 +293,17 @@ void MedianRowSized(ImageView<const std::int16_t> in, int y, std::int16_t* out) 
 void MedianRowImpl(ImageView<const std::int16_t> in, int size, int y, std::int16_t* columns, std::int16_t* out) {
   if (size == 5 && y >= 2 && y + 2 < in.height && in.width >= 5) {
     Median5RowInside(in, y, columns, out);
+  } else if (size == 5 && in.width >= 5) {
+    // The two rows at each edge: the window's rows inside the image.
+    const int first = std::max(0, y - 2);
+    switch (std::min(in.height - 1, y + 2) - first + 1) {
+      case 1: Median5RowCut<1>(in, y, first, out); break;
+      case 2: Median5RowCut<2>(in, y, first, out); break;
+      case 3: Median5RowCut<3>(in, y, first, out); break;
+      default: Median5RowCut<4>(in, y, first, out); break;
+    }
   } else if (size == 5) {
-    // The two rows at each edge, and images narrower than the window: narrower than any vector
-    // too, so pixel by pixel.
+    // Images narrower than the window: narrower than any vector too, so pixel by pixel.
     for (int x = 0; x < in.width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
   } else if (size == 3) {
     MedianRowSized<3>(in, y, out);
