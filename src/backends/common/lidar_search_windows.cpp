@@ -42,24 +42,29 @@ void lidarSearchExtremes(const LidarPoints& points, int y0, int y1, SearchWindow
   }
 }
 
+void lidarSearchRowExtremes(int rows, int y, std::int16_t* low16, std::int16_t* high16, const SearchWindows& windows) {
+  const int width = windows.width();
+  const int height = windows.height();
+  const SearchWindows::Scratch& scratch = windows.scratch();
+  // The extremes over +-rows rows, a whole row at a time (contiguous: the compiler vectorises it).
+  std::fill(low16, low16 + width, kSearchNoLowest);
+  std::fill(high16, high16 + width, kSearchNoHighest);
+  for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
+    const std::int16_t* lowRow = scratch.lowest16.data() + static_cast<std::size_t>(ny) * width;
+    const std::int16_t* highRow = scratch.highest16.data() + static_cast<std::size_t>(ny) * width;
+    for (int x = 0; x < width; ++x) {
+      low16[x] = std::min(low16[x], lowRow[x]);
+      high16[x] = std::max(high16[x], highRow[x]);
+    }
+  }
+}
+
 void lidarSearchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
                            std::int16_t* high16, SearchWindows& windows) {
   const int width = windows.width();
-  const int height = windows.height();
   const int numDisparities = windows.numDisparities();
-  const SearchWindows::Scratch& scratch = windows.scratch();
   for (int y = y0; y < y1; ++y) {
-    // The extremes over +-rows rows, a whole row at a time (contiguous: the compiler vectorises it).
-    std::fill(low16, low16 + width, kSearchNoLowest);
-    std::fill(high16, high16 + width, kSearchNoHighest);
-    for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
-      const std::int16_t* lowRow = scratch.lowest16.data() + static_cast<std::size_t>(ny) * width;
-      const std::int16_t* highRow = scratch.highest16.data() + static_cast<std::size_t>(ny) * width;
-      for (int x = 0; x < width; ++x) {
-        low16[x] = std::min(low16[x], lowRow[x]);
-        high16[x] = std::max(high16[x], highRow[x]);
-      }
-    }
+    lidarSearchRowExtremes(rows, y, low16, high16, windows);
     for (int x = 0; x < width; ++x) {
       int first = 0;
       int count = 0;

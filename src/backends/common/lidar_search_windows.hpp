@@ -31,5 +31,8 @@ void lidarSearchExtremes(const LidarPoints& points, int y0, int y1, SearchWindow
 /// `high16` are width int16 of the caller's scratch.
 void lidarSearchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
                            std::int16_t* high16, SearchWindows& windows);
+/// Pass 2's extremes of row y alone (the pixels' [low16, high16] over +-`rows` rows), for a
+/// caller that applies the window rule itself (a SIMD backend).
+void lidarSearchRowExtremes(int rows, int y, std::int16_t* low16, std::int16_t* high16, const SearchWindows& windows);
 
 }  // namespace lidar_sgm

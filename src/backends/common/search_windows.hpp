@@ -60,6 +60,7 @@ class SearchWindows {
     std::vector<std::int16_t> lowest16, highest16, rowLowest16, rowHighest16;
   };
   Scratch& scratch() { return scratch_; }
+  const Scratch& scratch() const { return scratch_; }
 
  private:
   int numDisparities_ = 0;

@@ -161,6 +161,47 @@ HWY_INLINE VI16 MedianOfSortedColumns(VI16 (&A)[5][5]) {
   return SelectMedian<13>(candidates);
 }
 
+// The n = 5 * rows values of the 5x5 windows of pixels at .. at + N - 1 cut to the rows from
+// `firstRow` on, into v; returns per lane how many of them are invalid.
+template <int n>
+HWY_INLINE VI16 LoadWindows(ImageView<const std::int16_t> in, int firstRow, int at, VI16* v) {
+  const DI16 d;
+  const auto invalid = hn::Set(d, kInvalidDisparity);
+  auto invalidCount = hn::Zero(d);  // minus the count: a true mask is -1
+  for (int k = 0; k < n; ++k) {
+    v[k] = hn::LoadU(d, in.row(firstRow + k / 5) + at - 2 + k % 5);
+    invalidCount = hn::Add(invalidCount, hn::VecFromMask(d, hn::Eq(v[k], invalid)));
+  }
+  return hn::Neg(invalidCount);
+}
+
+// The medians of pixels at .. at + N - 1 of row y, except where the pixel itself is invalid: the
+// median removes outliers, it does not fill holes.
+HWY_INLINE void StoreUnlessInvalid(ImageView<const std::int16_t> in, int y, int at, VI16 median, std::int16_t* out) {
+  const DI16 d;
+  const auto invalid = hn::Set(d, kInvalidDisparity);
+  hn::StoreU(hn::IfThenElse(hn::Eq(hn::LoadU(d, in.row(y) + at), invalid), invalid, median), d, out + at);
+}
+
+// Row y of the 5x5 median along its columns: `medians(x)` for the pixels x .. x + N - 1 whose
+// windows' five columns are inside the image, cpu_ref's rule pixel by pixel for the two columns
+// at each edge.
+template <class Medians>
+HWY_INLINE void Median5Columns(ImageView<const std::int16_t> in, int y, int N, const Medians& medians,
+                               std::int16_t* out) {
+  const int width = in.width;
+  int x = 0;
+  for (; x < 2; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
+  for (; x + N + 2 <= width; x += N) medians(x);
+  if (x < width - 2 && width >= N + 4) {
+    // The last windows inside the image: one more vector ending there, over pixels the loop
+    // already wrote (the same values again: out is not in), instead of one scalar window each.
+    medians(width - 2 - N);
+    x = width - 2;
+  }
+  for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
+}
+
 // One output row of the 5x5 median where the window is inside the image. The five-pixel columns
 // (rows y-2 .. y+2) are sorted once per row into `columns` (5 rank rows of `width`), then every
 // window reads its five sorted columns; windows with an invalid pixel (the invalid marker is the
@@ -201,25 +242,10 @@ void Median5RowInside(ImageView<const std::int16_t> in, int y, std::int16_t* col
       return;
     }
     VI16 v[25];
-    auto invalidCount = hn::Zero(d);  // minus the count: a true mask is -1
-    for (int k = 0; k < 25; ++k) {
-      v[k] = hn::LoadU(d, in.row(y - 2 + k / 5) + at - 2 + k % 5);
-      invalidCount = hn::Add(invalidCount, hn::VecFromMask(d, hn::Eq(v[k], invalid)));
-    }
-    // An invalid pixel stays invalid: the median removes outliers, it does not fill holes.
-    const auto median = SortValidMedian25(v, hn::Neg(invalidCount));
-    hn::StoreU(hn::IfThenElse(hn::Eq(hn::LoadU(d, in.row(y) + at), invalid), invalid, median), d, out + at);
+    const VI16 invalidCount = LoadWindows<25>(in, y - 2, at, v);
+    StoreUnlessInvalid(in, y, at, SortValidMedian25(v, invalidCount), out);
   };
-  x = 0;
-  for (; x < 2; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
-  for (; x + N + 2 <= width; x += N) medians(x);
-  if (x < width - 2 && width >= N + 4) {
-    // The last windows inside the image: one more vector ending there, over pixels the loop
-    // already wrote (the same values again: out is not in), instead of one scalar window each.
-    medians(width - 2 - N);
-    x = width - 2;
-  }
-  for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
+  Median5Columns(in, y, N, medians, out);
 }
 
 // One output row of the 5x5 median where the window is cut by the top or bottom of the image: its
@@ -229,30 +255,13 @@ void Median5RowInside(ImageView<const std::int16_t> in, int y, std::int16_t* col
 template <int kRows>
 void Median5RowCut(ImageView<const std::int16_t> in, int y, int first, std::int16_t* out) {
   constexpr int n = 5 * kRows;
-  const DI16 d;
-  const int N = static_cast<int>(hn::Lanes(d));
-  const int width = in.width;
-  const auto invalid = hn::Set(d, kInvalidDisparity);
+  const int N = static_cast<int>(hn::Lanes(DI16()));
   const auto medians = [&](int at) {
     VI16 v[n];
-    auto invalidCount = hn::Zero(d);  // minus the count: a true mask is -1
-    for (int k = 0; k < n; ++k) {
-      v[k] = hn::LoadU(d, in.row(first + k / 5) + at - 2 + k % 5);
-      invalidCount = hn::Add(invalidCount, hn::VecFromMask(d, hn::Eq(v[k], invalid)));
-    }
-    // An invalid pixel stays invalid: the median removes outliers, it does not fill holes.
-    const auto median = SelectValidMedian<n>(v, hn::Neg(invalidCount));
-    hn::StoreU(hn::IfThenElse(hn::Eq(hn::LoadU(d, in.row(y) + at), invalid), invalid, median), d, out + at);
+    const VI16 invalidCount = LoadWindows<n>(in, first, at, v);
+    StoreUnlessInvalid(in, y, at, SelectValidMedian<n>(v, invalidCount), out);
   };
-  int x = 0;
-  for (; x < 2; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
-  for (; x + N + 2 <= width; x += N) medians(x);
-  if (x < width - 2 && width >= N + 4) {
-    // The last windows inside the columns: one more vector ending there (as Median5RowInside).
-    medians(width - 2 - N);
-    x = width - 2;
-  }
-  for (; x < width; ++x) out[x] = in(x, y) == kInvalidDisparity ? kInvalidDisparity : medianPixel(in, 2, x, y);
+  Median5Columns(in, y, N, medians, out);
 }
 
 // The 3x3 filter's row (the 5x5 filter has Median5RowInside and the scalar rule at its edges).

@@ -1,6 +1,6 @@
-// The LiDAR gate's second pass (lidar_search_windows.hpp), fast CPU backend: each pixel's
-// extremes over +-rows rows and its window (search_window_rule.hpp's searchWindowOf), for a
-// whole vector of pixels at once in 16-bit lanes. The rule's branches become masks; every
+// The LiDAR gate's second pass (lidar_search_windows.hpp), fast CPU backend: each row's extremes
+// over +-rows rows as the host takes them (lidarSearchRowExtremes), then each pixel's window
+// (search_window_rule.hpp's searchWindowOf) for a whole vector of pixels at once in 16-bit lanes. The rule's branches become masks; every
 // intermediate value fits 16 bits (x16 disparities in [-32768, 32767] give pixel disparities in
 // [-2048, 2048], the margin and the range's ends at most 512 in magnitude: Parameters' limits),
 // and ceil(h / 16) is computed without h + 15, which would wrap at the clamped extreme.
@@ -9,10 +9,10 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
+#include "backends/common/lidar_search_windows.hpp"
 #include "backends/common/search_window_rule.hpp"
 #include "backends/common/search_windows.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
@@ -53,20 +53,9 @@ void SearchWindowRowsImpl(int minDisparity, int rows, int margin, int y0, int y1
   const hn::ScalableTag<std::int16_t> d;
   const int N = static_cast<int>(hn::Lanes(d));
   const int width = windows.width();
-  const int height = windows.height();
   const int numDisparities = windows.numDisparities();
-  const SearchWindows::Scratch& scratch = windows.scratch();
   for (int y = y0; y < y1; ++y) {
-    std::fill(low16, low16 + width, kSearchNoLowest);
-    std::fill(high16, high16 + width, kSearchNoHighest);
-    for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
-      const std::int16_t* lowRow = scratch.lowest16.data() + static_cast<std::size_t>(ny) * width;
-      const std::int16_t* highRow = scratch.highest16.data() + static_cast<std::size_t>(ny) * width;
-      for (int x = 0; x < width; ++x) {
-        low16[x] = std::min(low16[x], lowRow[x]);
-        high16[x] = std::max(high16[x], highRow[x]);
-      }
-    }
+    lidarSearchRowExtremes(rows, y, low16, high16, windows);
     std::int16_t* first = windows.firstRowToSet(y);
     std::int16_t* count = windows.countRowToSet(y);
     int x = 0;
