@@ -228,11 +228,13 @@ void CpuMatcher::preparePathRows(const Frame& f, bool& newLayout) {
   // Per chunk: each vertical path downward and upward (2 * verticalPaths rows of kChunkRows),
   // in two parities.
   const std::size_t chunkPathRows = 2 * static_cast<std::size_t>(kChunkRows) * 2 * f.verticalPaths;
-  const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows) * f.verticalPaths;
-  preparePathBuffer(pathRows_, 6, rowBytes, W, D, element, newLayout);
+  // One group of checkpoints a chunk but the last (the sweep up), or one a chunk (the bands).
+  const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows + 1) * f.verticalPaths;
+  // Each path's double-buffered row, for each of two bands (sweepBands).
+  preparePathBuffer(pathRows_, 4 * 3, rowBytes, W, D, element, newLayout);
   preparePathBuffer(chunkPaths_, chunkPathRows, rowBytes, W, D, element, newLayout);
   preparePathBuffer(checkpoints_, checkpoints, rowBytes, W, D, element, newLayout);
-  resizeKeep(pathMins_, 6 * static_cast<std::size_t>(W));
+  resizeKeep(pathMins_, 4 * 3 * static_cast<std::size_t>(W));
   resizeKeep(chunkMins_, chunkPathRows * W);
   resizeKeep(checkpointMins_, checkpoints * W);
 }
@@ -242,7 +244,9 @@ void CpuMatcher::prepareWorkers(const Frame& f, bool newLayout) {
   const int W = plan.width;
   const std::size_t rowBytes = f.rowSlots * (f.paths8 ? 1 : 2);
   workers_.resize(static_cast<std::size_t>(f.threads));
-  const std::size_t partMax = (static_cast<std::size_t>(W) / f.threads + 1) * plan.D;
+  // The costs of a thread's columns of a row, or of the whole row (a band's).
+  const std::size_t partMax = (inBands(f) ? static_cast<std::size_t>(W) : static_cast<std::size_t>(W) / f.threads + 1) *
+                              static_cast<std::size_t>(plan.D);
   for (Worker& w : workers_) {
     resizeKeep(w.stereo, partMax);
     resizeKeep(w.lidar, partMax);

@@ -14,6 +14,14 @@
 //               (never a whole row of it), the right view's winners (left-right check, the
 //               confidence's left-right difference) and the peak-ratio margin. One barrier per chunk (per row only for the diagonals of 8
 //               paths): lock step per row would stall whenever another process takes a core.
+//   two threads (the default on a 2-core machine) in bands instead: the top chunks' thread runs
+//               the downward paths while the bottom chunks' runs the upward ones (each costing its
+//               rows and keeping checkpoints), then, after the frame's one barrier, each walks its
+//               band away from the other, continuing the other direction from the other band's
+//               last row and recomputing its own from the checkpoints, with the horizontal paths
+//               and the selection chunk by chunk. Split by columns, then by rows, half of every
+//               chunk's path rows crossed between the cores twice: the vertical paths took as long
+//               on two threads as on one (sweeps.cpp; BENCHMARK.md).
 //   LR check, median   rows in parallel.
 //   confidence  the core's part too (LiDAR distance, texture, disparity range, the model), rows
 //               or columns in parallel, so that no stage of the frame runs on one thread.
@@ -120,12 +128,22 @@ class CpuMatcher final : public MatcherBackend {
   void sweepUp(const Frame& frame);
   template <typename PathT>
   void sweepDown(const Frame& frame);
+  /// Two threads: each its own band of rows, start to end (sweeps.cpp says why).
+  static bool inBands(const Frame& frame);
+  template <typename PathT>
+  void sweepBands(const Frame& frame);
+  /// Band 0 holds the chunks [0, splitChunk), band 1 the rest.
+  template <typename PathT>
+  void bandCosts(const Frame& frame, int band, int splitChunk, Worker& worker);
+  template <typename PathT>
+  void bandSelect(const Frame& frame, int band, int splitChunk, Worker& worker);
   template <typename PathT>
   void upwardPathsOfChunk(const Frame& frame, int chunk, int x0, int x1);
   template <typename PathT>
   void downwardPathsOfChunk(const Frame& frame, int chunk, int x0, int x1);
+  /// Rows r0 .. r1-1 of a chunk whose vertical paths are in the chunk buffers `parity`.
   template <typename PathT>
-  void selectChunkRows(const Frame& frame, int chunk, int r0, int r1, Worker& worker);
+  void selectChunkRows(const Frame& frame, int chunk, int parity, int r0, int r1, Worker& worker);
   /// A chunk's path row r of path k (k < verticalPaths: downward, else upward) and its minima.
   template <typename PathT>
   PathT* chunkPath(const Frame& frame, int parity, int k, int r);

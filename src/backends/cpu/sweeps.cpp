@@ -1,7 +1,8 @@
 // The cpu backend's two sweeps over the image (cpu_matcher.hpp says why this shape): the sweep up
 // stores C and checkpoints the upward paths; the sweep down, chunk by chunk, recomputes the
 // upward paths from the checkpoints, runs the downward and horizontal paths, sums S and selects
-// the winners in the same visit of each pixel's S.
+// the winners in the same visit of each pixel's S. With two threads, the same stages in two bands
+// of rows (sweepBands).
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -54,7 +55,13 @@ bool CpuMatcher::costsPackedInPlace(const Frame& f) {
 
 void CpuMatcher::aggregateAndSelect(const Frame& f) {
   const auto t0 = Clock::now();
-  if (f.paths8) {
+  if (inBands(f)) {
+    if (f.paths8) {
+      sweepBands<std::uint8_t>(f);
+    } else {
+      sweepBands<std::uint16_t>(f);
+    }
+  } else if (f.paths8) {
     sweepUp<std::uint8_t>(f);
     sweepDown<std::uint8_t>(f);
   } else {
@@ -125,6 +132,149 @@ void CpuMatcher::sweepUp(const Frame& f) {
   }
 }
 
+// Two threads in bands. In the sweeps above the threads split the columns for the vertical paths
+// and the rows for the rest, so that half of every chunk's path rows, written by one core, are
+// read by the other, and the next chunk writes rows the other core has read: with two threads the
+// sweep down's vertical paths took as long as on one (BENCHMARK.md). Here each thread keeps a band
+// of whole rows from start to end, and only two rows cross between the cores. Band 0 (the top
+// chunks [0, m)) runs the downward paths top to bottom while band 1 runs the upward paths bottom to
+// top, both costing their rows and keeping checkpoints; then, after the one barrier, band 0 walks
+// up chunk by chunk, continuing the upward paths from band 1's last row and recomputing the
+// downward ones from its checkpoints, and band 1 walks down, continuing the downward paths from
+// band 0's last row and recomputing the upward ones; each chunk's horizontal paths and selection
+// follow on the same thread. The same arithmetic on the same values as the sweeps above.
+// Checkpoint groups (kChunkRows rows of the image each): the downward paths at row 8c - 1 for
+// band 0's chunk c in group c - 1, the upward paths at row 8c + 8 for band 1's chunk c in group
+// c + 1 (chunks m and m - 1 read the other band's groups m - 1 and m).
+bool CpuMatcher::inBands(const Frame& f) { return f.threads == 2 && f.plan.height > kChunkRows; }
+
+namespace {
+
+int chunkCount(int height, int chunkRows) { return (height + chunkRows - 1) / chunkRows; }
+
+}  // namespace
+
+template <typename PathT>
+void CpuMatcher::sweepBands(const Frame& f) {
+  const int chunks = chunkCount(f.plan.height, kChunkRows);
+  const int m = chunks / 2;  // band 0: chunks [0, m), band 1: [m, chunks); both non-empty
+#pragma omp parallel num_threads(2)
+  {
+    const int team = teamSize();
+    const int t = threadIndex();
+    Worker& w = workers_[static_cast<std::size_t>(t)];
+    for (int band = t; band < 2; band += team) bandCosts<PathT>(f, band, m, w);
+#pragma omp barrier
+    for (int band = t; band < 2; band += team) bandSelect<PathT>(f, band, m, w);
+  }
+}
+
+// Phase 1 of a band: its rows' costs and its own direction's vertical paths, keeping checkpoints.
+template <typename PathT>
+void CpuMatcher::bandCosts(const Frame& f, int band, int splitChunk, Worker& w) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  const int D = f.plan.D;
+  const int vp = f.verticalPaths;
+  const std::size_t rowSlots = f.rowSlots;
+  const Parameters& p = f.plan.params;
+  const int yMid = splitChunk * kChunkRows;
+  const int count = band == 0 ? yMid : H - yMid;
+  for (int i = 0; i < count; ++i) {
+    const int y = band == 0 ? i : H - 1 - i;
+    const bool inPlace = f.windows == nullptr || costsPackedInPlace(f);
+    std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
+    const RowWindows windows = inPlace ? costWindows(f, y) : rowWindows(f, y);
+    costRange(f, y, 0, W, row, windows, w);
+    for (int k = 0; k < vp; ++k) {
+      const std::size_t current = static_cast<std::size_t>((band * 3 + k) * 2 + i % 2);
+      const std::size_t previous = static_cast<std::size_t>((band * 3 + k) * 2 + (i + 1) % 2);
+      PathT* out = as<PathT>(pathRows_, current * rowSlots);
+      std::uint16_t* outMin = pathMins_.data() + current * W;
+      pathRowFromPrevious(row, 0, i == 0 ? nullptr : as<PathT>(pathRows_, previous * rowSlots),
+                          pathMins_.data() + previous * W, band == 0 ? kDownward[k].dx : kUpward[k].dx, W, 0, W, D,
+                          p.P1, p.P2, out, outMin, windows);
+      // The other walk restarts here: band 0 at a chunk's last row, band 1 at a chunk's first.
+      const bool checkpoint = band == 0 ? y % kChunkRows == kChunkRows - 1 : y % kChunkRows == 0;
+      if (checkpoint) {
+        const std::size_t g = static_cast<std::size_t>(y / kChunkRows) * vp + k;
+        std::copy(out, out + rowSlots, as<PathT>(checkpoints_, g * rowSlots));
+        std::copy(outMin, outMin + W, checkpointMins_.data() + g * W);
+      }
+    }
+    if (!inPlace) packCostRow(f, y, 0, W, row);
+  }
+}
+
+// Phase 2 of a band: chunk by chunk away from the other band, the vertical paths of the chunk's
+// rows (one continuing, one recomputed from its checkpoint), then its horizontal paths and
+// selection. The chunk buffers of parity `band` are this band's alone.
+template <typename PathT>
+void CpuMatcher::bandSelect(const Frame& f, int band, int splitChunk, Worker& w) {
+  const int W = f.plan.width;
+  const int H = f.plan.height;
+  const int D = f.plan.D;
+  const int vp = f.verticalPaths;
+  const std::size_t rowSlots = f.rowSlots;
+  const Parameters& p = f.plan.params;
+  const int chunks = chunkCount(H, kChunkRows);
+  const auto checkpoint = [&](int group, int k) {
+    return as<PathT>(checkpoints_, (static_cast<std::size_t>(group) * vp + k) * rowSlots);
+  };
+  const auto checkpointMin = [&](int group, int k) {
+    return checkpointMins_.data() + (static_cast<std::size_t>(group) * vp + k) * W;
+  };
+  const int m = splitChunk;
+  const int first = band == 0 ? m - 1 : m;
+  const int last = band == 0 ? -1 : chunks;
+  const int step = band == 0 ? -1 : 1;
+  for (int chunk = first; chunk != last; chunk += step) {
+    const int yBegin = chunk * kChunkRows;
+    const int rows = std::min(kChunkRows, H - yBegin);
+    // Downward paths, top to bottom.
+    for (int r = 0; r < rows; ++r) {
+      const int y = yBegin + r;
+      for (int k = 0; k < vp; ++k) {
+        const PathT* previous = nullptr;
+        const std::uint16_t* previousMin = nullptr;
+        if (r > 0) {
+          previous = chunkPath<PathT>(f, band, k, r - 1);
+          previousMin = chunkMin(f, band, k, r - 1);
+        } else if (y > 0) {
+          // Band 0 restarts from its checkpoint; band 1 continues from the chunk above (its
+          // first chunk from band 0's last row).
+          const bool fromCheckpoint = band == 0 || chunk == m;
+          previous = fromCheckpoint ? checkpoint(chunk - 1, k) : chunkPath<PathT>(f, band, k, kChunkRows - 1);
+          previousMin = fromCheckpoint ? checkpointMin(chunk - 1, k) : chunkMin(f, band, k, kChunkRows - 1);
+        }
+        pathRowFromPrevious(costRow(f, y), 0, previous, previousMin, kDownward[k].dx, W, 0, W, D, p.P1, p.P2,
+                            chunkPath<PathT>(f, band, k, r), chunkMin(f, band, k, r), costWindows(f, y));
+      }
+    }
+    // Upward paths, bottom to top.
+    for (int r = rows - 1; r >= 0; --r) {
+      const int y = yBegin + r;
+      for (int k = 0; k < vp; ++k) {
+        const PathT* previous = nullptr;
+        const std::uint16_t* previousMin = nullptr;
+        if (r < rows - 1) {
+          previous = chunkPath<PathT>(f, band, vp + k, r + 1);
+          previousMin = chunkMin(f, band, vp + k, r + 1);
+        } else if (y < H - 1) {
+          // Band 1 restarts from its checkpoint; band 0 continues from the chunk below (its
+          // last chunk from band 1's first row).
+          const bool fromCheckpoint = band == 1 || chunk == m - 1;
+          previous = fromCheckpoint ? checkpoint(chunk + 1, k) : chunkPath<PathT>(f, band, vp + k, 0);
+          previousMin = fromCheckpoint ? checkpointMin(chunk + 1, k) : chunkMin(f, band, vp + k, 0);
+        }
+        pathRowFromPrevious(costRow(f, y), 0, previous, previousMin, kUpward[k].dx, W, 0, W, D, p.P1, p.P2,
+                            chunkPath<PathT>(f, band, vp + k, r), chunkMin(f, band, vp + k, r), costWindows(f, y));
+      }
+    }
+    selectChunkRows<PathT>(f, chunk, band, 0, rows, w);
+  }
+}
+
 // Chunk buffers of each parity: paths [0, vp) downward, [vp, 2 vp) upward (recomputed),
 // kChunkRows rows each (vp = verticalPaths).
 template <typename PathT>
@@ -160,7 +310,7 @@ void CpuMatcher::sweepDown(const Frame& f) {
       // cost, then S (all paths) and the winners, and the right view's winners, which read S
       // diagonally.
       const int rows = std::min(kChunkRows, H - chunk * kChunkRows);
-      selectChunkRows<PathT>(f, chunk, partBegin(rows, team, t), partBegin(rows, team, t + 1), w);
+      selectChunkRows<PathT>(f, chunk, chunk % 2, partBegin(rows, team, t), partBegin(rows, team, t + 1), w);
       // No barrier here: the next chunk fills the other parity's buffers, and the barrier after
       // its stage 1 keeps this chunk's buffers alive until every thread has finished stage 2.
     }
@@ -234,12 +384,11 @@ void CpuMatcher::downwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1)
 // winners and the confidence inputs that need S (from the winners before the left-right check),
 // all in the same pass over each pixel's S.
 template <typename PathT>
-void CpuMatcher::selectChunkRows(const Frame& f, int chunk, int r0, int r1, Worker& w) {
+void CpuMatcher::selectChunkRows(const Frame& f, int chunk, int parity, int r0, int r1, Worker& w) {
   const FramePlan& plan = f.plan;
   const Parameters& p = plan.params;
   const int W = plan.width;
   const int D = plan.D;
-  const int parity = chunk % 2;
   ConfidenceInputs& confidence = f.out.confidenceInputs;
   PathT* rightward = as<PathT>(w.rightward);
   PathT* leftward = as<PathT>(w.leftward);
