@@ -515,6 +515,11 @@ std::vector<FrameCase> frameCases() {
       {"Stereo631x479", 631, 479, 8, "stereo", none},
       {"Lidar631x479", 631, 479, 8, "lidar", none},
       {"Fused17x9", 17, 9, 8, "fused", [](Parameters& p) { p.numDisparities = 16; }},
+      // Two threads split the rows into two bands of chunks of 8 (the cpu backend's sweepBands):
+      // 16 rows, two whole chunks; 17, a last chunk of one row; 8, no second band.
+      {"Fused131x16", 131, 16, 8, "fused", [](Parameters& p) { p.numDisparities = 32; }},
+      {"EightPathsStereo131x17", 131, 17, 8, "stereo", [](Parameters& p) { p.numDisparities = 32; p.paths = 8; }},
+      {"Fused131x8", 131, 8, 8, "fused", [](Parameters& p) { p.numDisparities = 32; }},
       {"Stereo17x9", 17, 9, 8, "stereo", [](Parameters& p) { p.numDisparities = 16; }},
       {"Fused16Bit", 131, 61, 16, "fused", [](Parameters& p) { p.numDisparities = 64; }},
       {"Stereo16Bit", 131, 61, 16, "stereo", [](Parameters& p) { p.numDisparities = 64; }},
