@@ -85,7 +85,7 @@ def main(argv=None):
         gt = lidar_sgm.read_image(str(root / "disp_occ_0" / f"{frame.name}.png")).astype(np.float64) / 256.0
         objects = lidar_sgm.read_image(str(root / "obj_map" / f"{frame.name}.png"))
         verdict = contradicted(points, calibration, gt)
-        keeps = {VARIANTS[0]: verdict == verdict, VARIANTS[1]: verdict != -1, VARIANTS[2]: verdict != 1,
+        keeps = {VARIANTS[0]: np.ones(len(points), bool), VARIANTS[1]: verdict != -1, VARIANTS[2]: verdict != 1,
                  VARIANTS[3]: verdict == 0}
         densifier = lidar_sgm.Densifier(calibration, frame="camera")
         for name, keep in keeps.items():

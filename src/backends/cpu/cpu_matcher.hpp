@@ -37,6 +37,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "backends/common/cost_volume.hpp"
@@ -138,9 +139,10 @@ class CpuMatcher final : public MatcherBackend {
   template <typename PathT>
   void bandSelect(const Frame& frame, int band, int splitChunk, Worker& worker);
   template <typename PathT>
-  void upwardPathsOfChunk(const Frame& frame, int chunk, int x0, int x1);
-  template <typename PathT>
-  void downwardPathsOfChunk(const Frame& frame, int chunk, int x0, int x1);
+  void costAndStepRow(const Frame& frame, int y, int i, int x0, int x1, int rowSet, int group, Worker& worker);
+  template <typename PathT, typename Entry>
+  void verticalPathsOfChunk(const Frame& frame, int chunk, int parity, bool upward, int x0, int x1, bool lockStep,
+                            const Entry& entry);
   /// Rows r0 .. r1-1 of a chunk whose vertical paths are in the chunk buffers `parity`.
   template <typename PathT>
   void selectChunkRows(const Frame& frame, int chunk, int parity, int r0, int r1, Worker& worker);
@@ -148,6 +150,9 @@ class CpuMatcher final : public MatcherBackend {
   template <typename PathT>
   PathT* chunkPath(const Frame& frame, int parity, int k, int r);
   std::uint16_t* chunkMin(const Frame& frame, int parity, int k, int r);
+  /// Path k's row in a checkpoint group (the sweep up's, or a band's) and its minima.
+  template <typename PathT>
+  std::pair<PathT*, std::uint16_t*> checkpointRow(const Frame& frame, int group, int k);
   /// Path buffers (bytes) viewed as path elements of type T.
   template <typename T, typename Bytes>
   static T* as(Bytes& bytes, std::size_t elementOffset = 0) {

@@ -1,9 +1,10 @@
 // The LiDAR gate's second pass (lidar_search_windows.hpp), fast CPU backend: each row's extremes
 // over +-rows rows as the host takes them (lidarSearchRowExtremes), then each pixel's window
-// (search_window_rule.hpp's searchWindowOf) for a whole vector of pixels at once in 16-bit lanes. The rule's branches become masks; every
-// intermediate value fits 16 bits (x16 disparities in [-32768, 32767] give pixel disparities in
-// [-2048, 2048], the margin and the range's ends at most 512 in magnitude: Parameters' limits),
-// and ceil(h / 16) is computed without h + 15, which would wrap at the clamped extreme.
+// (search_window_rule.hpp's searchWindowOf) for a whole vector of pixels at once in 16-bit
+// lanes. The rule's branches become masks; every intermediate value fits 16 bits (x16
+// disparities in [-32768, 32767] give pixel disparities in [-2048, 2048], the margin and the
+// range's ends at most 512 in magnitude: Parameters' limits), and ceil(h / 16) is computed
+// without h + 15, which would wrap at the clamped extreme.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "backends/cpu/search_window_rows.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep

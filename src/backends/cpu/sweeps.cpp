@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <tuple>
+#include <utility>
 
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_matcher.hpp"
@@ -21,12 +23,9 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-// The paths of each sweep as (dx, dy): the previous pixel on the path is (x - dx, y - dy).
-struct Step {
-  int dx;
-};
-constexpr Step kUpward[3] = {{0}, {1}, {-1}};    // (0,-1), then with 8 paths (1,-1), (-1,-1)
-constexpr Step kDownward[3] = {{0}, {1}, {-1}};  // (0,1), then with 8 paths (1,1), (-1,1)
+// The vertical paths' columns steps: the previous pixel on path k is (x - dx, y -+ 1), the same
+// dx whichever way a walk goes: (0, +-1), then with 8 paths (1, +-1), (-1, +-1).
+constexpr int kVerticalDx[3] = {0, 1, -1};
 
 }  // namespace
 
@@ -85,10 +84,6 @@ template <typename PathT>
 void CpuMatcher::sweepUp(const Frame& f) {
   const int W = f.plan.width;
   const int H = f.plan.height;
-  const int D = f.plan.D;
-  const std::size_t rowSlots = f.rowSlots;
-  const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
-  const Parameters& p = f.plan.params;
 #pragma omp parallel num_threads(f.threads)
   {
     const int team = teamSize();
@@ -98,38 +93,53 @@ void CpuMatcher::sweepUp(const Frame& f) {
     Worker& w = workers_[static_cast<std::size_t>(t)];
     for (int i = 0; i < H; ++i) {
       const int y = H - 1 - i;
-      // The row's costs: into the volume (the census costs of a gated frame packed in place), or
-      // in the whole range's layout into the worker's row, packed into the volume after the
-      // upward paths (the LiDAR-only and Triple-SGM costs of a gated frame).
-      const bool inPlace = f.windows == nullptr || costsPackedInPlace(f);
-      std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
-      const int rowX0 = inPlace ? 0 : x0;  // the pixel of `row`'s first costs in the whole range's layout
-      const RowWindows windows = inPlace ? costWindows(f, y) : rowWindows(f, y);
-      // costRange writes a packed row from its start (windows.costOffset), any other from pixel x0.
-      std::uint8_t* costOut = windows.costOffset != nullptr ? row : row + static_cast<std::size_t>(x0 - rowX0) * D;
-      costRange(f, y, x0, x1, costOut, windows, w);
-      for (int k = 0; k < f.verticalPaths; ++k) {
-        PathT* current = as<PathT>(pathRows_, (2 * k + i % 2) * rowSlots);
-        const PathT* previous = i == 0 ? nullptr : as<PathT>(pathRows_, (2 * k + (i + 1) % 2) * rowSlots);
-        std::uint16_t* currentMin = pathMins_.data() + static_cast<std::size_t>(2 * k + i % 2) * W;
-        const std::uint16_t* previousMin = pathMins_.data() + static_cast<std::size_t>(2 * k + (i + 1) % 2) * W;
-        pathRowFromPrevious(row, rowX0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2, current,
-                            currentMin, windows);
-        // The first row of every chunk but the top one: the sweep down restarts the upward paths
-        // of the chunk above from here.
-        if (y > 0 && y % kChunkRows == 0) {
-          const std::size_t c = static_cast<std::size_t>(y / kChunkRows - 1) * f.verticalPaths + k;
-          std::copy(current + x0 * slot, current + x1 * slot, as<PathT>(checkpoints_, c * rowSlots) + x0 * slot);
-          std::copy(currentMin + x0, currentMin + x1, checkpointMins_.data() + c * W + x0);
-        }
-      }
-      if (!inPlace) packCostRow(f, y, x0, x1, row);
+      // The first row of every chunk but the top one: the sweep down restarts the upward paths of
+      // the chunk above from here.
+      const int group = y > 0 && y % kChunkRows == 0 ? y / kChunkRows - 1 : -1;
+      costAndStepRow<PathT>(f, y, i, x0, x1, 0, group, w);
       // Diagonal paths read the neighbouring columns of the previous row: wait for them.
       if (f.verticalPaths > 1) {
 #pragma omp barrier
       }
     }
   }
+}
+
+// Row y, the i-th of a walk that costs as it goes (the sweep up, a band's first phase): the
+// row's costs for pixels x0 .. x1-1, into the volume (the census costs of a gated frame packed in
+// place) or in the whole range's layout into the worker's row, packed into the volume after the
+// paths (the LiDAR-only and Triple-SGM costs of a gated frame); then the walk's vertical paths one
+// step on from its previous row, in the double-buffered path rows of set `rowSet`, copied to
+// checkpoint group `group` unless it is negative.
+template <typename PathT>
+void CpuMatcher::costAndStepRow(const Frame& f, int y, int i, int x0, int x1, int rowSet, int group, Worker& w) {
+  const int W = f.plan.width;
+  const int D = f.plan.D;
+  const std::size_t rowSlots = f.rowSlots;
+  const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
+  const Parameters& p = f.plan.params;
+  const bool inPlace = f.windows == nullptr || costsPackedInPlace(f);
+  std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
+  const int rowX0 = inPlace ? 0 : x0;  // the pixel of `row`'s first costs in the whole range's layout
+  const RowWindows windows = inPlace ? costWindows(f, y) : rowWindows(f, y);
+  // costRange writes a packed row from its start (windows.costOffset), any other from pixel x0.
+  std::uint8_t* costOut = windows.costOffset != nullptr ? row : row + static_cast<std::size_t>(x0 - rowX0) * D;
+  costRange(f, y, x0, x1, costOut, windows, w);
+  for (int k = 0; k < f.verticalPaths; ++k) {
+    const std::size_t current = static_cast<std::size_t>((rowSet * 3 + k) * 2 + i % 2);
+    const std::size_t previous = static_cast<std::size_t>((rowSet * 3 + k) * 2 + (i + 1) % 2);
+    PathT* out = as<PathT>(pathRows_, current * rowSlots);
+    std::uint16_t* outMin = pathMins_.data() + current * W;
+    pathRowFromPrevious(row, rowX0, i == 0 ? nullptr : as<PathT>(pathRows_, previous * rowSlots),
+                        pathMins_.data() + previous * W, kVerticalDx[k], W, x0, x1, D, p.P1, p.P2, out, outMin,
+                        windows);
+    if (group >= 0) {
+      const auto [saved, savedMin] = checkpointRow<PathT>(f, group, k);
+      std::copy(out + x0 * slot, out + x1 * slot, saved + x0 * slot);
+      std::copy(outMin + x0, outMin + x1, savedMin + x0);
+    }
+  }
+  if (!inPlace) packCostRow(f, y, x0, x1, row);
 }
 
 // Two threads in bands. In the sweeps above the threads split the columns for the vertical paths
@@ -172,37 +182,14 @@ void CpuMatcher::sweepBands(const Frame& f) {
 // Phase 1 of a band: its rows' costs and its own direction's vertical paths, keeping checkpoints.
 template <typename PathT>
 void CpuMatcher::bandCosts(const Frame& f, int band, int splitChunk, Worker& w) {
-  const int W = f.plan.width;
   const int H = f.plan.height;
-  const int D = f.plan.D;
-  const int vp = f.verticalPaths;
-  const std::size_t rowSlots = f.rowSlots;
-  const Parameters& p = f.plan.params;
   const int yMid = splitChunk * kChunkRows;
   const int count = band == 0 ? yMid : H - yMid;
   for (int i = 0; i < count; ++i) {
     const int y = band == 0 ? i : H - 1 - i;
-    const bool inPlace = f.windows == nullptr || costsPackedInPlace(f);
-    std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
-    const RowWindows windows = inPlace ? costWindows(f, y) : rowWindows(f, y);
-    costRange(f, y, 0, W, row, windows, w);
-    for (int k = 0; k < vp; ++k) {
-      const std::size_t current = static_cast<std::size_t>((band * 3 + k) * 2 + i % 2);
-      const std::size_t previous = static_cast<std::size_t>((band * 3 + k) * 2 + (i + 1) % 2);
-      PathT* out = as<PathT>(pathRows_, current * rowSlots);
-      std::uint16_t* outMin = pathMins_.data() + current * W;
-      pathRowFromPrevious(row, 0, i == 0 ? nullptr : as<PathT>(pathRows_, previous * rowSlots),
-                          pathMins_.data() + previous * W, band == 0 ? kDownward[k].dx : kUpward[k].dx, W, 0, W, D,
-                          p.P1, p.P2, out, outMin, windows);
-      // The other walk restarts here: band 0 at a chunk's last row, band 1 at a chunk's first.
-      const bool checkpoint = band == 0 ? y % kChunkRows == kChunkRows - 1 : y % kChunkRows == 0;
-      if (checkpoint) {
-        const std::size_t g = static_cast<std::size_t>(y / kChunkRows) * vp + k;
-        std::copy(out, out + rowSlots, as<PathT>(checkpoints_, g * rowSlots));
-        std::copy(outMin, outMin + W, checkpointMins_.data() + g * W);
-      }
-    }
-    if (!inPlace) packCostRow(f, y, 0, W, row);
+    // The other walk restarts here: band 0 at a chunk's last row, band 1 at a chunk's first.
+    const bool checkpoint = band == 0 ? y % kChunkRows == kChunkRows - 1 : y % kChunkRows == 0;
+    costAndStepRow<PathT>(f, y, i, 0, f.plan.width, band, checkpoint ? y / kChunkRows : -1, w);
   }
 }
 
@@ -213,64 +200,26 @@ template <typename PathT>
 void CpuMatcher::bandSelect(const Frame& f, int band, int splitChunk, Worker& w) {
   const int W = f.plan.width;
   const int H = f.plan.height;
-  const int D = f.plan.D;
   const int vp = f.verticalPaths;
-  const std::size_t rowSlots = f.rowSlots;
-  const Parameters& p = f.plan.params;
   const int chunks = chunkCount(H, kChunkRows);
-  const auto checkpoint = [&](int group, int k) {
-    return as<PathT>(checkpoints_, (static_cast<std::size_t>(group) * vp + k) * rowSlots);
-  };
-  const auto checkpointMin = [&](int group, int k) {
-    return checkpointMins_.data() + (static_cast<std::size_t>(group) * vp + k) * W;
-  };
   const int m = splitChunk;
+  using Entry = std::pair<const PathT*, const std::uint16_t*>;
   const int first = band == 0 ? m - 1 : m;
   const int last = band == 0 ? -1 : chunks;
   const int step = band == 0 ? -1 : 1;
   for (int chunk = first; chunk != last; chunk += step) {
     const int yBegin = chunk * kChunkRows;
     const int rows = std::min(kChunkRows, H - yBegin);
-    // Downward paths, top to bottom.
-    for (int r = 0; r < rows; ++r) {
-      const int y = yBegin + r;
-      for (int k = 0; k < vp; ++k) {
-        const PathT* previous = nullptr;
-        const std::uint16_t* previousMin = nullptr;
-        if (r > 0) {
-          previous = chunkPath<PathT>(f, band, k, r - 1);
-          previousMin = chunkMin(f, band, k, r - 1);
-        } else if (y > 0) {
-          // Band 0 restarts from its checkpoint; band 1 continues from the chunk above (its
-          // first chunk from band 0's last row).
-          const bool fromCheckpoint = band == 0 || chunk == m;
-          previous = fromCheckpoint ? checkpoint(chunk - 1, k) : chunkPath<PathT>(f, band, k, kChunkRows - 1);
-          previousMin = fromCheckpoint ? checkpointMin(chunk - 1, k) : chunkMin(f, band, k, kChunkRows - 1);
-        }
-        pathRowFromPrevious(costRow(f, y), 0, previous, previousMin, kDownward[k].dx, W, 0, W, D, p.P1, p.P2,
-                            chunkPath<PathT>(f, band, k, r), chunkMin(f, band, k, r), costWindows(f, y));
-      }
-    }
-    // Upward paths, bottom to top.
-    for (int r = rows - 1; r >= 0; --r) {
-      const int y = yBegin + r;
-      for (int k = 0; k < vp; ++k) {
-        const PathT* previous = nullptr;
-        const std::uint16_t* previousMin = nullptr;
-        if (r < rows - 1) {
-          previous = chunkPath<PathT>(f, band, vp + k, r + 1);
-          previousMin = chunkMin(f, band, vp + k, r + 1);
-        } else if (y < H - 1) {
-          // Band 1 restarts from its checkpoint; band 0 continues from the chunk below (its
-          // last chunk from band 1's first row).
-          const bool fromCheckpoint = band == 1 || chunk == m - 1;
-          previous = fromCheckpoint ? checkpoint(chunk + 1, k) : chunkPath<PathT>(f, band, vp + k, 0);
-          previousMin = fromCheckpoint ? checkpointMin(chunk + 1, k) : chunkMin(f, band, vp + k, 0);
-        }
-        pathRowFromPrevious(costRow(f, y), 0, previous, previousMin, kUpward[k].dx, W, 0, W, D, p.P1, p.P2,
-                            chunkPath<PathT>(f, band, vp + k, r), chunkMin(f, band, vp + k, r), costWindows(f, y));
-      }
-    }
+    // Band 0 restarts the downward paths from its checkpoints and continues the upward ones from
+    // the chunk below (its last chunk from band 1's first row); band 1 the other way round.
+    verticalPathsOfChunk<PathT>(f, chunk, band, false, 0, W, false, [&](int k) {
+      if (band == 0 || chunk == m) return Entry(checkpointRow<PathT>(f, chunk - 1, k));
+      return Entry(chunkPath<PathT>(f, band, k, kChunkRows - 1), chunkMin(f, band, k, kChunkRows - 1));
+    });
+    verticalPathsOfChunk<PathT>(f, chunk, band, true, 0, W, false, [&](int k) {
+      if (band == 1 || chunk == m - 1) return Entry(checkpointRow<PathT>(f, chunk + 1, k));
+      return Entry(chunkPath<PathT>(f, band, vp + k, 0), chunkMin(f, band, vp + k, 0));
+    });
     selectChunkRows<PathT>(f, chunk, band, 0, rows, w);
   }
 }
@@ -281,6 +230,13 @@ template <typename PathT>
 PathT* CpuMatcher::chunkPath(const Frame& f, int parity, int k, int r) {
   const std::size_t row = (static_cast<std::size_t>(parity) * 2 * f.verticalPaths + k) * kChunkRows + r;
   return as<PathT>(chunkPaths_, row * f.rowSlots);
+}
+
+// Path k's row in checkpoint group `group` (one group of verticalPaths rows a chunk) and its minima.
+template <typename PathT>
+std::pair<PathT*, std::uint16_t*> CpuMatcher::checkpointRow(const Frame& f, int group, int k) {
+  const std::size_t g = static_cast<std::size_t>(group) * f.verticalPaths + k;
+  return {as<PathT>(checkpoints_, g * f.rowSlots), checkpointMins_.data() + g * f.plan.width};
 }
 
 std::uint16_t* CpuMatcher::chunkMin(const Frame& f, int parity, int k, int r) {
@@ -303,25 +259,37 @@ void CpuMatcher::sweepDown(const Frame& f) {
     Worker& w = workers_[static_cast<std::size_t>(t)];
     for (int chunk = 0; chunk * kChunkRows < H; ++chunk) {
       // Stage 1, this thread's columns: the vertical (and diagonal) paths of the chunk's rows.
-      upwardPathsOfChunk<PathT>(f, chunk, x0, x1);
-      downwardPathsOfChunk<PathT>(f, chunk, x0, x1);
+      // The upward paths again from the checkpoint the sweep up left below the chunk (the costs
+      // were stored, the paths not: a volume of them would cost as much memory as the costs),
+      // then the downward paths continuing the previous chunk's (the other parity).
+      const int parity = chunk % 2;
+      const bool lockStep = f.verticalPaths > 1;
+      using Entry = std::pair<const PathT*, const std::uint16_t*>;
+      verticalPathsOfChunk<PathT>(f, chunk, parity, true, x0, x1, lockStep,
+                                  [&](int k) { return Entry(checkpointRow<PathT>(f, chunk, k)); });
+      verticalPathsOfChunk<PathT>(f, chunk, parity, false, x0, x1, lockStep, [&](int k) {
+        return Entry(chunkPath<PathT>(f, 1 - parity, k, kChunkRows - 1), chunkMin(f, 1 - parity, k, kChunkRows - 1));
+      });
 #pragma omp barrier
       // Stage 2, whole rows split among the threads: the horizontal paths need the row's every
       // cost, then S (all paths) and the winners, and the right view's winners, which read S
       // diagonally.
       const int rows = std::min(kChunkRows, H - chunk * kChunkRows);
-      selectChunkRows<PathT>(f, chunk, chunk % 2, partBegin(rows, team, t), partBegin(rows, team, t + 1), w);
+      selectChunkRows<PathT>(f, chunk, parity, partBegin(rows, team, t), partBegin(rows, team, t + 1), w);
       // No barrier here: the next chunk fills the other parity's buffers, and the barrier after
       // its stage 1 keeps this chunk's buffers alive until every thread has finished stage 2.
     }
   }
 }
 
-// The upward paths of the chunk's rows again, bottom to top from the checkpoint the sweep up left
-// below the chunk (the costs were stored, the paths not: a full volume of them would cost as much
-// memory as the costs). Called by every thread of the team (it holds barriers).
-template <typename PathT>
-void CpuMatcher::upwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
+// One vertical direction of the chunk's rows for pixels x0 .. x1-1, into the chunk buffers of
+// `parity`: downward (paths [0, vp)) from the chunk's first row, or upward ([vp, 2 vp)) from its
+// last. `entry(k)` gives path k's row before the chunk and its minima (a checkpoint or the chunk
+// next to it); at the image's edge the path starts. `lockStep`: a barrier after each row, which
+// every thread of the team must then reach (the diagonals read the neighbouring columns).
+template <typename PathT, typename Entry>
+void CpuMatcher::verticalPathsOfChunk(const Frame& f, int chunk, int parity, bool upward, int x0, int x1,
+                                      bool lockStep, const Entry& entry) {
   const int W = f.plan.width;
   const int H = f.plan.height;
   const int D = f.plan.D;
@@ -329,52 +297,26 @@ void CpuMatcher::upwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
   const int vp = f.verticalPaths;
   const int yBegin = chunk * kChunkRows;
   const int rows = std::min(kChunkRows, H - yBegin);
-  const int parity = chunk % 2;
-  for (int r = rows - 1; r >= 0; --r) {
+  const int path0 = upward ? vp : 0;
+  for (int step = 0; step < rows; ++step) {
+    const int r = upward ? rows - 1 - step : step;
     const int y = yBegin + r;
-    const std::uint8_t* cost = costRow(f, y);
-    const RowWindows windows = costWindows(f, y);
+    const bool edge = upward ? y == H - 1 : y == 0;
     for (int k = 0; k < vp; ++k) {
-      const std::size_t c = static_cast<std::size_t>(chunk) * vp + k;
-      const PathT* previous = y == H - 1        ? nullptr
-                              : r == rows - 1 ? as<PathT>(checkpoints_, c * f.rowSlots)
-                                              : chunkPath<PathT>(f, parity, vp + k, r + 1);
-      const std::uint16_t* previousMin =
-          r == rows - 1 ? checkpointMins_.data() + c * W : chunkMin(f, parity, vp + k, r + 1);
-      pathRowFromPrevious(cost, 0, previous, previousMin, kUpward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                          chunkPath<PathT>(f, parity, vp + k, r), chunkMin(f, parity, vp + k, r), windows);
+      const PathT* previous = nullptr;
+      const std::uint16_t* previousMin = nullptr;
+      if (step > 0) {
+        const int before = upward ? r + 1 : r - 1;
+        previous = chunkPath<PathT>(f, parity, path0 + k, before);
+        previousMin = chunkMin(f, parity, path0 + k, before);
+      } else if (!edge) {
+        std::tie(previous, previousMin) = entry(k);
+      }
+      pathRowFromPrevious(costRow(f, y), 0, previous, previousMin, kVerticalDx[k], W, x0, x1, D, p.P1, p.P2,
+                          chunkPath<PathT>(f, parity, path0 + k, r), chunkMin(f, parity, path0 + k, r),
+                          costWindows(f, y));
     }
-    if (vp > 1) {
-#pragma omp barrier
-    }
-  }
-}
-
-// The downward paths of the chunk's rows, top to bottom, continuing the previous chunk's (the
-// other parity). Called by every thread of the team (it holds barriers).
-template <typename PathT>
-void CpuMatcher::downwardPathsOfChunk(const Frame& f, int chunk, int x0, int x1) {
-  const int W = f.plan.width;
-  const int D = f.plan.D;
-  const Parameters& p = f.plan.params;
-  const int vp = f.verticalPaths;
-  const int yBegin = chunk * kChunkRows;
-  const int rows = std::min(kChunkRows, f.plan.height - yBegin);
-  const int parity = chunk % 2;
-  for (int r = 0; r < rows; ++r) {
-    const int y = yBegin + r;
-    const std::uint8_t* cost = costRow(f, y);
-    const RowWindows windows = costWindows(f, y);
-    for (int k = 0; k < vp; ++k) {
-      const PathT* previous = y == 0   ? nullptr
-                              : r == 0 ? chunkPath<PathT>(f, 1 - parity, k, kChunkRows - 1)
-                                       : chunkPath<PathT>(f, parity, k, r - 1);
-      const std::uint16_t* previousMin =
-          r == 0 ? chunkMin(f, 1 - parity, k, kChunkRows - 1) : chunkMin(f, parity, k, r - 1);
-      pathRowFromPrevious(cost, 0, previous, previousMin, kDownward[k].dx, W, x0, x1, D, p.P1, p.P2,
-                          chunkPath<PathT>(f, parity, k, r), chunkMin(f, parity, k, r), windows);
-    }
-    if (vp > 1) {
+    if (lockStep) {
 #pragma omp barrier
     }
   }
