@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "field_text.hpp"
+#include "text_values.hpp"
 #include "pcd_writer.hpp"
 
 namespace lidar_sgm {
@@ -37,7 +38,7 @@ void writeBinaryPcd(AtomicFile& out, const pcl::PCLPointCloud2& layout, const st
     pcl::PCLPointField packedField = field;
     packedField.count = std::max<std::uint32_t>(field.count, 1);
     packedField.offset = static_cast<std::uint32_t>(step);
-    const std::size_t size = static_cast<std::size_t>(fieldValueSize(field.datatype)) * packedField.count;
+    const std::size_t size = datatypeSize(field.datatype) * packedField.count;
     if (size == 0) fail("field '" + field.name + "' has an unsupported type (" + std::to_string(field.datatype) + ")");
     if (field.offset + size > layout.point_step) {
       fail("field '" + field.name + "' lies outside the " + std::to_string(layout.point_step) + "-byte point record");

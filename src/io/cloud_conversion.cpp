@@ -17,38 +17,10 @@ namespace {
 
 bool finiteXyz(const pcl::PointXYZI& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
-const char* typeName(std::uint8_t datatype) {
-  switch (datatype) {
-    case pcl::PCLPointField::INT8: return "int8";
-    case pcl::PCLPointField::UINT8: return "uint8";
-    case pcl::PCLPointField::INT16: return "int16";
-    case pcl::PCLPointField::UINT16: return "uint16";
-    case pcl::PCLPointField::INT32: return "int32";
-    case pcl::PCLPointField::UINT32: return "uint32";
-    case pcl::PCLPointField::INT64: return "int64";
-    case pcl::PCLPointField::UINT64: return "uint64";
-    case pcl::PCLPointField::FLOAT32: return "float32";
-    case pcl::PCLPointField::FLOAT64: return "float64";
-    case pcl::PCLPointField::BOOL: return "bool";
-    default: return "unknown";
-  }
-}
-
+// Bytes of one value in memory: the types a PCD file holds (datatypeSize), and a bool, which
+// pcl::PCLPointCloud2 may carry but PCD does not.
 std::size_t typeSize(std::uint8_t datatype) {
-  switch (datatype) {
-    case pcl::PCLPointField::INT8:
-    case pcl::PCLPointField::UINT8:
-    case pcl::PCLPointField::BOOL: return 1;
-    case pcl::PCLPointField::INT16:
-    case pcl::PCLPointField::UINT16: return 2;
-    case pcl::PCLPointField::INT32:
-    case pcl::PCLPointField::UINT32:
-    case pcl::PCLPointField::FLOAT32: return 4;
-    case pcl::PCLPointField::INT64:
-    case pcl::PCLPointField::UINT64:
-    case pcl::PCLPointField::FLOAT64: return 8;
-    default: return 0;
-  }
+  return datatype == pcl::PCLPointField::BOOL ? sizeof(bool) : datatypeSize(datatype);
 }
 
 template <typename T>
@@ -122,7 +94,7 @@ FieldReader coordinateReader(const std::string& path, const pcl::PCLPointCloud2&
   const pcl::PCLPointField* field = findField(blob, name);
   if (field == nullptr) failCloudRead(path, "no '" + name + "' field (fields: " + fieldList(blob) + ")");
   if (field->datatype != pcl::PCLPointField::FLOAT32 && field->datatype != pcl::PCLPointField::FLOAT64) {
-    failCloudRead(path, "field '" + name + "' has type " + typeName(field->datatype) +
+    failCloudRead(path, "field '" + name + "' has type " + datatypeName(field->datatype) +
                             "; x, y, z must be float32 or float64");
   }
   return readerFor(path, blob, *field);

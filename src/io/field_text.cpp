@@ -55,22 +55,6 @@ bool appendFieldValue(std::string& out, std::uint8_t datatype, const std::uint8_
   }
 }
 
-int fieldValueSize(std::uint8_t datatype) {
-  switch (datatype) {
-    case pcl::PCLPointField::INT8:
-    case pcl::PCLPointField::UINT8: return 1;
-    case pcl::PCLPointField::INT16:
-    case pcl::PCLPointField::UINT16: return 2;
-    case pcl::PCLPointField::INT32:
-    case pcl::PCLPointField::UINT32:
-    case pcl::PCLPointField::FLOAT32: return 4;
-    case pcl::PCLPointField::INT64:
-    case pcl::PCLPointField::UINT64:
-    case pcl::PCLPointField::FLOAT64: return 8;
-    default: return 0;
-  }
-}
-
 }  // namespace detail
 }  // namespace io
 }  // namespace lidar_sgm

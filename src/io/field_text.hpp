@@ -19,9 +19,6 @@ constexpr int kAsciiPrecision = 9;
 /// type this writer does not know (nothing appended).
 bool appendFieldValue(std::string& out, std::uint8_t datatype, const std::uint8_t* bytes, int precision);
 
-/// The bytes of one value of PCL type `datatype` (0 for an unknown type).
-int fieldValueSize(std::uint8_t datatype);
-
 }  // namespace detail
 }  // namespace io
 }  // namespace lidar_sgm

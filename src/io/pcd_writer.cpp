@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "field_text.hpp"
+#include "text_values.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -50,7 +51,7 @@ std::string pcdHeader(const std::vector<pcl::PCLPointField>& fields, std::uint32
   std::string names, sizes, types, counts;
   for (const pcl::PCLPointField& field : fields) {
     if (field.name == "_") continue;
-    const int size = fieldValueSize(field.datatype);
+    const int size = static_cast<int>(datatypeSize(field.datatype));
     if (size == 0) {
       throw std::runtime_error("field '" + field.name + "' has a type PCD cannot hold (" +
                                std::to_string(field.datatype) + ")");
@@ -80,7 +81,7 @@ void writeAsciiPcd(AtomicFile& out, const pcl::PCLPointCloud2& cloud) {
       const std::uint8_t type = field.name == "rgb" && field.datatype == pcl::PCLPointField::FLOAT32
                                     ? std::uint8_t{pcl::PCLPointField::UINT32}
                                     : field.datatype;
-      const int size = fieldValueSize(type);
+      const int size = static_cast<int>(datatypeSize(type));
       for (std::uint32_t c = 0; c < countOf(field); ++c) {
         if (!first) text += ' ';
         first = false;
@@ -101,7 +102,7 @@ void writeCompressedPcd(AtomicFile& out, const pcl::PCLPointCloud2& cloud) {
   const std::string header = pcdHeader(fields, cloud.width, cloud.height, /*rgbAsUnsigned=*/false);
   const std::size_t points = std::size_t{cloud.width} * cloud.height;
   std::size_t pointBytes = 0;
-  for (const pcl::PCLPointField& field : fields) pointBytes += std::size_t{countOf(field)} * fieldValueSize(field.datatype);
+  for (const pcl::PCLPointField& field : fields) pointBytes += std::size_t{countOf(field)} * datatypeSize(field.datatype);
   const std::size_t dataSize = points * pointBytes;
   if (dataSize / 2 * 3 > std::numeric_limits<std::uint32_t>::max()) {
     throw std::runtime_error("the cloud's " + std::to_string(dataSize) +
@@ -114,7 +115,7 @@ void writeCompressedPcd(AtomicFile& out, const pcl::PCLPointCloud2& cloud) {
     std::vector<std::uint8_t> planes(dataSize);
     std::uint8_t* to = planes.data();
     for (const pcl::PCLPointField& field : fields) {
-      const std::size_t size = std::size_t{countOf(field)} * fieldValueSize(field.datatype);
+      const std::size_t size = std::size_t{countOf(field)} * datatypeSize(field.datatype);
       const std::uint8_t* from = cloud.data.data() + field.offset;
       for (std::size_t i = 0; i < points; ++i, from += cloud.point_step, to += size) std::memcpy(to, from, size);
     }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "field_text.hpp"
+#include "text_values.hpp"
 
 namespace lidar_sgm {
 namespace io {
@@ -49,7 +50,7 @@ std::vector<Field> plyFields(const pcl::PCLPointCloud2& cloud) {
     Field f;
     f.field = field;
     f.count = std::max<std::uint32_t>(field.count, 1);
-    f.size = fieldValueSize(field.datatype);
+    f.size = static_cast<int>(datatypeSize(field.datatype));
     if (plyType(field.datatype) == nullptr) {
       throw std::runtime_error("field '" + field.name + "' has a type PLY cannot hold (" +
                                std::to_string(field.datatype) + ")");

@@ -146,6 +146,7 @@ const char* datatypeName(std::uint8_t datatype) {
     case pcl::PCLPointField::UINT64: return "uint64";
     case pcl::PCLPointField::FLOAT32: return "float32";
     case pcl::PCLPointField::FLOAT64: return "float64";
+    case pcl::PCLPointField::BOOL: return "bool";
     default: return "unknown";
   }
 }

@@ -21,7 +21,8 @@ bool parseCount(std::string_view token, std::uint64_t max, std::uint64_t& value)
 /// A finite or non-finite real ("nan" is how PCL writes a missing point).
 bool parseReal(std::string_view token, double& value);
 
-/// Bytes of one value of a pcl::PCLPointField datatype (0 for an unknown one).
+/// Bytes of one value of a pcl::PCLPointField datatype that PCD and PLY files hold (0 for another:
+/// an unknown one, or bool, which neither format has).
 std::size_t datatypeSize(std::uint8_t datatype);
 
 /// Parses `token` as one value of a pcl::PCLPointField `datatype` and stores it, in host order,

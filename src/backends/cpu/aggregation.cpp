@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "backends/common/path_costs.hpp"
+#include "backends/common/path_directions.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
@@ -365,13 +366,6 @@ void addPathRow(const std::uint16_t* path, int x0, int x1, int numDisparities, s
 
 namespace {
 
-struct Direction {
-  int dx;
-  int dy;
-};
-// cpu_ref's order: the paper's four paths first, then the diagonals.
-constexpr Direction kDirections[8] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
-
 template <typename T>
 void aggregatePathsT(const MatchingCostVolume& cost, int P1, int P2, int paths, AggregatedCostVolume& sum,
                      int threads) {
@@ -394,7 +388,7 @@ void aggregatePathsT(const MatchingCostVolume& cost, int P1, int P2, int paths, 
   std::vector<T> rows[2] = {pathRowBuffer<T>(width, D), pathRowBuffer<T>(width, D)};
   std::vector<std::uint16_t> mins[2] = {std::vector<std::uint16_t>(width), std::vector<std::uint16_t>(width)};
   for (int r = 2; r < paths; ++r) {
-    const Direction dir = kDirections[r];
+    const PathDirection dir = kPathDirections[r];
     for (int i = 0; i < height; ++i) {
       const int y = dir.dy > 0 ? i : height - 1 - i;
       std::vector<T>& current = rows[i % 2];

@@ -3,22 +3,14 @@
 #include <vector>
 
 #include "backends/common/stages.hpp"
+#include "backends/common/path_directions.hpp"
 
 namespace lidar_sgm {
 namespace cpu_ref {
 namespace {
 
-struct Direction {
-  int dx;
-  int dy;
-};
-
-// The first four are the paper's paths; the diagonals are added for 8 paths.
-constexpr Direction kDirections[8] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1},
-                                      {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
-
 // L_r for every pixel along direction r, in the order that visits p - r before p.
-void aggregateDirection(const MatchingCostVolume& cost, Direction r, int P1, int P2,
+void aggregateDirection(const MatchingCostVolume& cost, PathDirection r, int P1, int P2,
                         AggregatedCostVolume& pathCost) {
   const int width = cost.width();
   const int height = cost.height();
@@ -62,7 +54,7 @@ void aggregatePaths(const MatchingCostVolume& cost, int P1, int P2, int paths,
   sum.resize(cost.width(), cost.height(), cost.numDisparities());
   std::fill(sum.data(), sum.data() + sum.size(), std::uint16_t{0});
   for (int r = 0; r < paths; ++r) {
-    aggregateDirection(cost, kDirections[r], P1, P2, pathCost);
+    aggregateDirection(cost, kPathDirections[r], P1, P2, pathCost);
     // Eq. 2's sum over paths; bounded by paths * (255 + P2) <= 8 * 4255, which fits 16 bits.
     for (std::size_t i = 0; i < sum.size(); ++i) {
       sum.data()[i] = static_cast<std::uint16_t>(sum.data()[i] + pathCost.data()[i]);

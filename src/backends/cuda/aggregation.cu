@@ -37,7 +37,7 @@ struct Direction {
   int dy;
 };
 
-// cpu_ref's order (aggregation.cpp): the paper's four, then the diagonals.
+// kPathDirections (backends/common/path_directions.hpp) in constant memory: the paper's four, then the diagonals.
 __constant__ Direction kDirections[8] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
 
 /// The first pixel of path line `line` of direction r and its length; false past the last line.
