@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,23 +21,16 @@
 
 #include "common/test_data.hpp"
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;        ///< -1 when the command did not exit normally
-  std::string output;  ///< what the command printed (the caller redirects)
-};
+using RunResult = test::CommandResult;
 
 RunResult shell(const std::string& command) {
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command);
 }
 
 RunResult batch(const std::string& arguments) { return shell(std::string(test::kBatchTool) + " " + arguments + " 2>&1"); }

@@ -4,8 +4,6 @@
 
 #include <unistd.h>
 
-#include <sys/wait.h>
-
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -33,25 +31,18 @@
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/pcl/point_types.hpp"
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;
-  std::string output;  // stdout + stderr
-};
+using RunResult = test::CommandResult;
 
 /// `prefix` runs in the shell first (a ulimit, a trap).
 RunResult runTool(const std::string& arguments, const std::string& prefix = "") {
   const std::string command = prefix + std::string(test::kDensifyTool) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command);
 }
 
 const std::string kSample = test::kSampleDir;

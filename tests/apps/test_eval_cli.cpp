@@ -4,9 +4,6 @@
 
 #include <unistd.h>
 
-#include <sys/wait.h>
-
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -24,25 +21,18 @@
 #include "lidar_sgm/io/image_io.hpp"
 #include "lidar_sgm/pipeline/densifier.hpp"
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;
-  std::string output;
-};
+using RunResult = test::CommandResult;
 
 /// `environment` goes before the command ("NAME=value ..."), as a shell reads it.
 RunResult runTool(const std::string& arguments, const std::string& environment = "") {
   const std::string command = environment + " " + std::string(test::kEvalTool) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command);
 }
 
 class EvalCli : public ::testing::Test {

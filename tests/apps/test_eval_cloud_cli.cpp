@@ -4,8 +4,6 @@
 
 #include <unistd.h>
 
-#include <sys/wait.h>
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -17,24 +15,17 @@
 #include <nlohmann/json.hpp>
 
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;
-  std::string output;
-};
+using RunResult = test::CommandResult;
 
 RunResult runTool(const std::string& arguments) {
   const std::string command = std::string(test::kEvalTool) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command);
 }
 
 /// An ASCII PCD of the points (x, y, z); "nan" is written as PCL writes it.

@@ -5,11 +5,9 @@
 // third-party KITTI data (their description names ../shared/data) are only parsed.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -21,23 +19,16 @@
 #include <vector>
 
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;
-  std::string output;  ///< stdout + stderr
-};
+using RunResult = test::CommandResult;
 
 RunResult runShell(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command + " 2>&1");
 }
 
 struct Example {

@@ -3,11 +3,9 @@
 // against the nearest true surface of the scene.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +19,7 @@
 
 #include "lidar_sgm/synth/scene.hpp"
 #include "lidar_sgm/synth/sequence.hpp"
+#include "common/run_command.hpp"
 #include "common/test_paths.hpp"
 
 namespace lidar_sgm {
@@ -28,11 +27,9 @@ namespace {
 namespace fs = std::filesystem;
 
 int shell(const std::string& command, std::string& output) {
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  test::CommandResult result = test::runCommand(command);
+  output += result.output;
+  return result.exitCode;
 }
 
 /// Distances [m] from the map's points to the scene's surfaces, sorted.

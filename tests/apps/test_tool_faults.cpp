@@ -6,10 +6,8 @@
 
 #include <sys/mount.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -21,24 +19,17 @@
 #include <vector>
 
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 #include "lidar_sgm/io/cloud_io.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;        ///< -1 when the command did not exit normally
-  std::string output;  ///< what the command printed (the caller redirects)
-};
+using RunResult = test::CommandResult;
 
 RunResult shell(const std::string& command) {
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command);
 }
 
 RunResult batch(const std::string& arguments) { return shell(std::string(test::kBatchTool) + " " + arguments + " 2>&1"); }

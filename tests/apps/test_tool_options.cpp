@@ -2,32 +2,22 @@
 // else; a bad line exits 1 with a one-line message naming the problem, never an abort.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <array>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 #include "lidar_sgm/version.hpp"
 
 namespace lidar_sgm {
 namespace {
 
-struct RunResult {
-  int exitCode;  ///< -1 when the tool did not exit normally (an abort, a signal)
-  std::string output;  ///< stdout + stderr
-};
+using RunResult = test::CommandResult;
 
 RunResult run(const std::string& tool, const std::string& arguments) {
   const std::string command = tool + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command);
 }
 
 /// A tool, and for each kind of bad line one that reaches the parser (some tools check their

@@ -3,10 +3,8 @@
 // writes for the same frame (same point count), so the bench cannot drift from the tools.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,23 +13,16 @@
 #include <string>
 
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;        ///< -1 when the tool did not exit normally
-  std::string output;  ///< stdout + stderr
-};
+using RunResult = test::CommandResult;
 
 RunResult run(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command + " 2>&1");
 }
 
 /// The key=value pairs of the "result config=<config> ..." line; empty when there is none.

@@ -3,9 +3,6 @@
 
 #include <unistd.h>
 
-#include <sys/wait.h>
-
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,24 +12,17 @@
 
 #include "synth/synth_test_helpers.hpp"
 #include "common/test_paths.hpp"
+#include "common/run_command.hpp"
 
 namespace lidar_sgm {
 namespace {
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exitCode;
-  std::string output;  // stdout + stderr
-};
+using RunResult = test::CommandResult;
 
 RunResult runTool(const std::string& arguments) {
   const std::string command = std::string(test::kSynthTool) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 512> buffer{};
-  while (pipe && fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return test::runCommand(command);
 }
 
 class SynthCli : public ::testing::Test {
