@@ -81,24 +81,21 @@ HWY_INLINE void PeakRatioMarginPixel(const std::uint16_t* HWY_RESTRICT S, int D,
   }
   const D16 d16;
   const int N = static_cast<int>(hn::Lanes(d16));  // divides D (a multiple of 16)
-  const auto iota = hn::Iota(d16, 0);
   const auto none = hn::Set(d16, std::uint16_t{0xFFFF});  // above every S (<= 8 * 4255)
   *bestCost = S[best];
-  // Lanes d with |d - best| <= 1 are left out.
-  const auto before = hn::Set(d16, static_cast<std::uint16_t>(best - 1));
-  const auto at = hn::Set(d16, static_cast<std::uint16_t>(best));
-  const auto after = hn::Set(d16, static_cast<std::uint16_t>(best + 1));
-  // Only the one or two vectors that hold them need the mask.
-  const int maskedBegin = std::max(best - 1, 0) / N * N;
-  const int maskedEnd = std::min(best + 1, D - 1) / N * N + N;
+  // Lanes d with |d - best| <= 1 are left out: d - (best - 1) < 3 as uint16 (d < best - 1 wraps
+  // around). One mask per vector and no bounds that depend on the winner: the loop's trip count
+  // stays that of the pixel's window, which the branch predictor sees coming.
+  const auto below = hn::Set(d16, static_cast<std::uint16_t>(best - 1));
+  const auto three = hn::Set(d16, std::uint16_t{3});
+  auto index = hn::Iota(d16, 0);
+  const auto step = hn::Set(d16, static_cast<std::uint16_t>(N));
   auto lowest = none;
-  for (int i = 0; i < maskedBegin; i += N) lowest = hn::Min(lowest, hn::LoadU(d16, S + i));
-  for (int i = maskedBegin; i < maskedEnd; i += N) {
-    const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
-    const auto own = hn::Or(hn::Or(hn::Eq(index, before), hn::Eq(index, at)), hn::Eq(index, after));
+  for (int i = 0; i < D; i += N) {
+    const auto own = hn::Lt(hn::Sub(index, below), three);
     lowest = hn::Min(lowest, hn::IfThenElse(own, none, hn::LoadU(d16, S + i)));
+    index = hn::Add(index, step);
   }
-  for (int i = maskedEnd; i < D; i += N) lowest = hn::Min(lowest, hn::LoadU(d16, S + i));
   const int second = static_cast<int>(MinLaneU16(lowest));
   if (second == 0xFFFF) {
     *margin = 255;
