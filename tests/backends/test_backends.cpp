@@ -20,6 +20,10 @@
 #include "backends/common/lidar_weights.hpp"
 #include "backends/common/stages.hpp"
 #include "lidar_sgm/core/matcher.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #ifdef LIDAR_SGM_TEST_CPU_BACKEND
 #include "backends/cpu/cpu_stages.hpp"
 #endif
@@ -746,6 +750,59 @@ TEST(BackendReuse, OneMatcherThroughChangingFramesMatchesCpuRef) {
     }
   }
 }
+
+#ifdef _OPENMP
+// With two threads the cpu backend's bands help each other: whichever finishes its costs first
+// costs the other band's rows from that band's far end (sweeps.cpp, bandHelp), and the owner only
+// steps its paths over them. Which rows are helped depends on timing; with a team of one thread
+// (the matcher called inside another parallel region) band 0's thread costs every row of band 1,
+// and band 1 only steps: every helped-row path runs, deterministically, and must not change a bit.
+TEST(CpuBands, ATeamOfOneCostsTheOtherBandForItAndMatchesCpuRef) {
+  if (!isAvailable(Backend::Cpu)) GTEST_SKIP() << unavailableReason(Backend::Cpu);
+  const int levels = omp_get_max_active_levels();
+  omp_set_max_active_levels(1);  // the matcher's own region gets one thread
+  for (const FrameCase& c : frameCases()) {
+    // Costs in place (census, packed or not), and packed after the paths (Triple-SGM, gated).
+    if (c.name != "Fused131x16" && c.name != "EightPathsStereo131x17" && c.name != "GatedDefaults" &&
+        c.name != "GatedTripleFused16Bit") {
+      continue;
+    }
+    Parameters params;
+    params.gatedSearch = false;
+    c.tweak(params);
+    params.threads = 2;
+    const BackendScene scene = makeBackendScene(c.width, c.height, params.minDisparity, params.numDisparities, 21);
+    const bool sixteen = c.bits == 16;
+    const GrayImageView left = sixteen ? GrayImageView(scene.left16.view()) : GrayImageView(scene.left8.view());
+    const GrayImageView right = sixteen ? GrayImageView(scene.right16.view()) : GrayImageView(scene.right8.view());
+    VerticalView up;
+    if (c.mode == "triple_fused") {
+      up.up = sixteen ? GrayImageView(scene.up16.view()) : GrayImageView(scene.up8.view());
+      up.baselineRatio = scene.upRatio;
+    }
+    const LidarPoints* lidar = c.mode == "stereo" ? nullptr : &scene.lidar;
+    Image<std::int16_t> expected(c.width, c.height), actual(c.width, c.height);
+    Matcher::create(Backend::CpuRef, params)->compute(left, right, up, lidar, expected.view());
+    std::unique_ptr<Matcher> cpu = Matcher::create(Backend::Cpu, params);
+    int team = 0;
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp single
+      {
+#pragma omp parallel num_threads(2)
+        {
+#pragma omp single
+          team = omp_get_num_threads();
+        }
+        cpu->compute(left, right, up, lidar, actual.view());
+      }
+    }
+    EXPECT_EQ(team, 1) << "a nested region of two threads must get one";
+    EXPECT_TRUE(sameImages(expected, actual)) << c.name;
+  }
+  omp_set_max_active_levels(levels);
+}
+#endif
 
 // Only a GPU backend takes device memory; the others say so instead of reading a bad pointer.
 TEST(DeviceFrames, HostBackendsRefuseDeviceMemory) {

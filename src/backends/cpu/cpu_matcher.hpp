@@ -35,7 +35,9 @@
 // 128) saves no measurable time on the 2-core VM but 10-24 MiB of peak memory, and the volume
 // grows with the windows instead of the range (BENCHMARK.md).
 
+#include <atomic>
 #include <chrono>
+#include <memory>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -138,6 +140,12 @@ class CpuMatcher final : public MatcherBackend {
   void bandCosts(const Frame& frame, int band, int splitChunk, Worker& worker);
   template <typename PathT>
   void bandSelect(const Frame& frame, int band, int splitChunk, Worker& worker);
+  /// The other thread's share of band `band`'s costs in phase 1 (sweeps.cpp).
+  void bandHelp(const Frame& frame, int band, int splitChunk, Worker& worker);
+  void costWholeRow(const Frame& frame, int y, Worker& worker);
+  template <typename PathT>
+  void stepRow(const Frame& frame, int i, int x0, int x1, int rowSet, int group, const std::uint8_t* row, int rowX0,
+               RowWindows windows);
   template <typename PathT>
   void costAndStepRow(const Frame& frame, int y, int i, int x0, int x1, int rowSet, int group, Worker& worker);
   template <typename PathT, typename Entry>
@@ -201,6 +209,10 @@ class CpuMatcher final : public MatcherBackend {
   HugePageVector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row
   std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
+  // Who costs each row in the bands' phase 1: its band, or the other band (bandHelp).
+  enum RowClaim : std::uint8_t { kUnclaimed, kOwner, kHelper, kHelped };
+  std::unique_ptr<std::atomic<std::uint8_t>[]> rowClaims_;
+  std::size_t rowClaimCount_ = 0;
   SearchWindows windows_;  // the gated search's windows (Parameters::gatedSearch)
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;

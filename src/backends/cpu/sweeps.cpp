@@ -4,6 +4,9 @@
 // the winners in the same visit of each pixel's S. With two threads, the same stages in two bands
 // of rows (sweepBands).
 #include <algorithm>
+#include <atomic>
+#include <memory>
+#include <thread>
 #include <chrono>
 #include <cstring>
 #include <tuple>
@@ -113,11 +116,7 @@ void CpuMatcher::sweepUp(const Frame& f) {
 // checkpoint group `group` unless it is negative.
 template <typename PathT>
 void CpuMatcher::costAndStepRow(const Frame& f, int y, int i, int x0, int x1, int rowSet, int group, Worker& w) {
-  const int W = f.plan.width;
   const int D = f.plan.D;
-  const std::size_t rowSlots = f.rowSlots;
-  const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
-  const Parameters& p = f.plan.params;
   const bool inPlace = f.windows == nullptr || costsPackedInPlace(f);
   std::uint8_t* row = inPlace ? costRow(f, y) : w.costRow.data();
   const int rowX0 = inPlace ? 0 : x0;  // the pixel of `row`'s first costs in the whole range's layout
@@ -125,6 +124,31 @@ void CpuMatcher::costAndStepRow(const Frame& f, int y, int i, int x0, int x1, in
   // costRange writes a packed row from its start (windows.costOffset), any other from pixel x0.
   std::uint8_t* costOut = windows.costOffset != nullptr ? row : row + static_cast<std::size_t>(x0 - rowX0) * D;
   costRange(f, y, x0, x1, costOut, windows, w);
+  stepRow<PathT>(f, i, x0, x1, rowSet, group, row, rowX0, windows);
+  if (!inPlace) packCostRow(f, y, x0, x1, row);
+}
+
+// The whole of row y's costs into the cost volume (a band's row that the other band costs for it).
+void CpuMatcher::costWholeRow(const Frame& f, int y, Worker& w) {
+  const int W = f.plan.width;
+  if (f.windows == nullptr || costsPackedInPlace(f)) {
+    costRange(f, y, 0, W, costRow(f, y), costWindows(f, y), w);
+  } else {
+    costRange(f, y, 0, W, w.costRow.data(), rowWindows(f, y), w);
+    packCostRow(f, y, 0, W, w.costRow.data());
+  }
+}
+
+// The walk's vertical paths one step on, onto costed row `row` (pixel rowX0's costs first; its
+// windows, with costOffset when the row is the packed volume's).
+template <typename PathT>
+void CpuMatcher::stepRow(const Frame& f, int i, int x0, int x1, int rowSet, int group, const std::uint8_t* row,
+                         int rowX0, RowWindows windows) {
+  const int W = f.plan.width;
+  const int D = f.plan.D;
+  const std::size_t rowSlots = f.rowSlots;
+  const std::size_t slot = static_cast<std::size_t>(pathSlot(D));
+  const Parameters& p = f.plan.params;
   for (int k = 0; k < f.verticalPaths; ++k) {
     const std::size_t current = static_cast<std::size_t>((rowSet * 3 + k) * 2 + i % 2);
     const std::size_t previous = static_cast<std::size_t>((rowSet * 3 + k) * 2 + (i + 1) % 2);
@@ -139,7 +163,6 @@ void CpuMatcher::costAndStepRow(const Frame& f, int y, int i, int x0, int x1, in
       std::copy(outMin + x0, outMin + x1, savedMin + x0);
     }
   }
-  if (!inPlace) packCostRow(f, y, x0, x1, row);
 }
 
 // Two threads in bands. In the sweeps above the threads split the columns for the vertical paths
@@ -166,20 +189,31 @@ int chunkCount(int height, int chunkRows) { return (height + chunkRows - 1) / ch
 
 template <typename PathT>
 void CpuMatcher::sweepBands(const Frame& f) {
-  const int chunks = chunkCount(f.plan.height, kChunkRows);
+  const int H = f.plan.height;
+  const int chunks = chunkCount(H, kChunkRows);
   const int m = chunks / 2;  // band 0: chunks [0, m), band 1: [m, chunks); both non-empty
+  if (rowClaimCount_ < static_cast<std::size_t>(H)) {
+    rowClaims_ = std::make_unique<std::atomic<std::uint8_t>[]>(static_cast<std::size_t>(H));
+    rowClaimCount_ = static_cast<std::size_t>(H);
+  }
+  for (int y = 0; y < H; ++y) rowClaims_[static_cast<std::size_t>(y)].store(kUnclaimed, std::memory_order_relaxed);
 #pragma omp parallel num_threads(2)
   {
     const int team = teamSize();
     const int t = threadIndex();
     Worker& w = workers_[static_cast<std::size_t>(t)];
-    for (int band = t; band < 2; band += team) bandCosts<PathT>(f, band, m, w);
+    for (int band = t; band < 2; band += team) {
+      bandCosts<PathT>(f, band, m, w);
+      // Then the other band's costs, from the rows it reaches last, until the two meet.
+      bandHelp(f, 1 - band, m, w);
+    }
 #pragma omp barrier
     for (int band = t; band < 2; band += team) bandSelect<PathT>(f, band, m, w);
   }
 }
 
 // Phase 1 of a band: its rows' costs and its own direction's vertical paths, keeping checkpoints.
+// A row the other band has claimed (bandHelp) is only stepped, once its costs are in the volume.
 template <typename PathT>
 void CpuMatcher::bandCosts(const Frame& f, int band, int splitChunk, Worker& w) {
   const int H = f.plan.height;
@@ -189,7 +223,33 @@ void CpuMatcher::bandCosts(const Frame& f, int band, int splitChunk, Worker& w) 
     const int y = band == 0 ? i : H - 1 - i;
     // The other walk restarts here: band 0 at a chunk's last row, band 1 at a chunk's first.
     const bool checkpoint = band == 0 ? y % kChunkRows == kChunkRows - 1 : y % kChunkRows == 0;
-    costAndStepRow<PathT>(f, y, i, 0, f.plan.width, band, checkpoint ? y / kChunkRows : -1, w);
+    const int group = checkpoint ? y / kChunkRows : -1;
+    std::atomic<std::uint8_t>& claim = rowClaims_[static_cast<std::size_t>(y)];
+    std::uint8_t expected = kUnclaimed;
+    if (claim.compare_exchange_strong(expected, kOwner, std::memory_order_relaxed)) {
+      costAndStepRow<PathT>(f, y, i, 0, f.plan.width, band, group, w);
+      continue;
+    }
+    while (claim.load(std::memory_order_acquire) != kHelped) std::this_thread::yield();
+    stepRow<PathT>(f, i, 0, f.plan.width, band, group, costRow(f, y), 0, costWindows(f, y));
+  }
+}
+
+// Band `band`'s costs computed by the other thread, from the band's far end (the rows its own walk
+// reaches last) towards its start, until a row is already claimed: the bands' phase 1 differ in
+// work (a KITTI frame's LiDAR points lie in the bottom band: its costs took twice the top band's
+// time, BENCHMARK.md), and whichever band finishes first takes over the other's costs.
+void CpuMatcher::bandHelp(const Frame& f, int band, int splitChunk, Worker& w) {
+  const int H = f.plan.height;
+  const int yMid = splitChunk * kChunkRows;
+  const int count = band == 0 ? yMid : H - yMid;
+  for (int i = count - 1; i >= 0; --i) {
+    const int y = band == 0 ? i : H - 1 - i;
+    std::atomic<std::uint8_t>& claim = rowClaims_[static_cast<std::size_t>(y)];
+    std::uint8_t expected = kUnclaimed;
+    if (!claim.compare_exchange_strong(expected, kHelper, std::memory_order_relaxed)) return;
+    costWholeRow(f, y, w);
+    claim.store(kHelped, std::memory_order_release);  // the costs before the mark
   }
 }
 
