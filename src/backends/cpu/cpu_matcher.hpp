@@ -16,7 +16,8 @@
 //               paths): lock step per row would stall whenever another process takes a core.
 //   two threads (the default on a 2-core machine) in bands instead: the top chunks' thread runs
 //               the downward paths while the bottom chunks' runs the upward ones (each costing its
-//               rows and keeping checkpoints), then, after the frame's one barrier, each walks its
+//               rows and keeping checkpoints; the band done first costs the other's last rows for it,
+//               since a frame's LiDAR points weigh on one band), then, after the frame's one barrier, each walks its
 //               band away from the other, continuing the other direction from the other band's
 //               last row and recomputing its own from the checkpoints, with the horizontal paths
 //               and the selection chunk by chunk. Split by columns, then by rows, half of every

@@ -5,10 +5,10 @@
 // of rows (sweepBands).
 #include <algorithm>
 #include <atomic>
-#include <memory>
-#include <thread>
 #include <chrono>
 #include <cstring>
+#include <memory>
+#include <thread>
 #include <tuple>
 #include <utility>
 
@@ -175,7 +175,8 @@ void CpuMatcher::stepRow(const Frame& f, int i, int x0, int x1, int rowSet, int 
 // up chunk by chunk, continuing the upward paths from band 1's last row and recomputing the
 // downward ones from its checkpoints, and band 1 walks down, continuing the downward paths from
 // band 0's last row and recomputing the upward ones; each chunk's horizontal paths and selection
-// follow on the same thread. The same arithmetic on the same values as the sweeps above.
+// follow on the same thread. The same arithmetic on the same values as the sweeps above. Before
+// the barrier, the band that finishes first costs the other band's last rows for it (bandHelp).
 // Checkpoint groups (kChunkRows rows of the image each): the downward paths at row 8c - 1 for
 // band 0's chunk c in group c - 1, the upward paths at row 8c + 8 for band 1's chunk c in group
 // c + 1 (chunks m and m - 1 read the other band's groups m - 1 and m).
