@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "lidar_sgm/pipeline/lidar_anchor.hpp"
 #include "lidar_sgm/pipeline/min_confidence.hpp"
 #include "core/half_scale.hpp"
+#include "core/parallel_ranges.hpp"
 #include "pipeline/post_matcher_passes.hpp"
 
 namespace lidar_sgm {
@@ -382,6 +384,17 @@ double Densifier::validPercent() const {
     for (int x = 0; x < disparity_.width(); ++x) valid += disparity_(x, y) != kInvalidDisparity ? 1 : 0;
   }
   return 100.0 * static_cast<double>(valid) / (static_cast<double>(disparity_.width()) * disparity_.height());
+}
+
+void Densifier::parallelFor(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) const {
+  // parallelParts takes an int count: larger counts go in int-sized blocks.
+  constexpr std::size_t kBlock = static_cast<std::size_t>(std::numeric_limits<int>::max());
+  for (std::size_t offset = 0; offset < count; offset += kBlock) {
+    const int n = static_cast<int>(std::min(kBlock, count - offset));
+    parallelParts(n, effectiveThreads(config_.matcher), [&](int, int begin, int end) {
+      body(offset + static_cast<std::size_t>(begin), offset + static_cast<std::size_t>(end));
+    });
+  }
 }
 
 bool Densifier::colorAt(int x, int y, Rgb8& out) const {

@@ -235,6 +235,10 @@ class SGMDensification : public pcl::PCLBase<PointInT> {
   void mapLidarPixels();
   /// The intensity rule of the class comment for the output point at pixel (x, y).
   float intensityAt(int x, int y) const;
+  /// Output point i from the last run's cloud point i: a default point, then its fields (called
+  /// on the Densifier's threads, one range of points each).
+  void convertPoint(const geometry::DenseCloud& dense, const Image<std::uint8_t>& confidence, std::size_t i,
+                    PointOutT& q) const;
 
   Densifier densifier_;
   std::vector<Eigen::Vector3f> points_;   ///< the indexed input points, kept between frames

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -201,6 +202,11 @@ class Densifier {
   /// The color of pixel (x, y): from the color image, else from the left image (gray); false
   /// when there is neither.
   bool colorAt(int x, int y, Rgb8& out) const;
+  /// Runs body(begin, end) on fixed contiguous ranges of [0, count), in parallel on the
+  /// Densifier's threads (parameters().threads), for a front end that converts the last run's
+  /// outputs element by element (the PCL class's points). The ranges depend on count and the
+  /// thread count only; body must write each element the same way whichever range holds it.
+  void parallelFor(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) const;
 
  private:
   geometry::StereoCalibration resolveCalibration(bool required, int lidarWidth, int lidarHeight) const;

@@ -228,42 +228,53 @@ void SGMDensification<PointInT, PointOutT>::filter(PointCloudOut& output) {
     return;
   }
   takeProjected();
-  constexpr bool kHasIntensity = pcl::traits::has_intensity_v<PointOutT>;
-  constexpr bool kHasConfidence = pcl::traits::has_field<PointOutT, pcl::fields::confidence>::value;
   const Image<std::uint8_t>& confidence = densifier_.confidence();
-  if constexpr (kHasIntensity) mapLidarPixels();
+  if constexpr (pcl::traits::has_intensity_v<PointOutT>) mapLidarPixels();
 
   output.header = header;
   if (densifier_.reprojectionOptions().frame == geometry::OutputFrame::Camera) output.header.frame_id = cameraFrameId_;
-  // From default points: a field this frame does not write (color without an image) must not
-  // keep what an earlier frame wrote into a reused output cloud.
-  output.clear();
-  reserveOnHugePages(output.points, dense->size());  // a frame's cloud: tens of MB, written once
-  output.resize(dense->size());
+  if (output.points.capacity() < dense->size()) {
+    output.clear();
+    reserveOnHugePages(output.points, dense->size());  // a frame's cloud: tens of MB, written once
+  }
+  output.resize(dense->size());  // a reused cloud: only the points beyond its last size are new
   output.width = static_cast<std::uint32_t>(dense->width);
   output.height = static_cast<std::uint32_t>(dense->height);
   output.is_dense = dense->isDense;
-  for (std::size_t i = 0; i < dense->size(); ++i) {
-    PointOutT& q = output[i];
-    const geometry::PixelIndex pixel = dense->pixels[i];
-    q.x = dense->points[i].x();
-    q.y = dense->points[i].y();
-    q.z = dense->points[i].z();
-    if constexpr (pcl::traits::has_color_v<PointOutT>) {
-      Rgb8 c;
-      if (densifier_.colorAt(pixel.x, pixel.y, c)) {
-        q.r = c.r;
-        q.g = c.g;
-        q.b = c.b;
-      }
-    }
-    if constexpr (kHasIntensity) q.intensity = intensityAt(pixel.x, pixel.y);
-    if constexpr (kHasConfidence) {
-      q.confidence = confidence.empty() ? std::numeric_limits<float>::quiet_NaN()
-                                        : static_cast<float>(confidence(pixel.x, pixel.y)) / 255.0f;
+  // The points in parallel on the Densifier's threads (the PCL cloud is written once, ~30 bytes a
+  // pixel, and colors and confidences are looked up per point).
+  densifier_.parallelFor(dense->size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) convertPoint(*dense, confidence, i, output[i]);
+  });
+  deinitCompute();
+}
+
+template <typename PointInT, typename PointOutT>
+void SGMDensification<PointInT, PointOutT>::convertPoint(const geometry::DenseCloud& dense,
+                                                         const Image<std::uint8_t>& confidence, std::size_t i,
+                                                         PointOutT& q) const {
+  constexpr bool kHasIntensity = pcl::traits::has_intensity_v<PointOutT>;
+  constexpr bool kHasConfidence = pcl::traits::has_field<PointOutT, pcl::fields::confidence>::value;
+  // From a default point: a field this frame does not write (color without an image) must not
+  // keep what an earlier frame wrote into a reused output cloud.
+  q = PointOutT();
+  const geometry::PixelIndex pixel = dense.pixels[i];
+  q.x = dense.points[i].x();
+  q.y = dense.points[i].y();
+  q.z = dense.points[i].z();
+  if constexpr (pcl::traits::has_color_v<PointOutT>) {
+    Rgb8 c;
+    if (densifier_.colorAt(pixel.x, pixel.y, c)) {
+      q.r = c.r;
+      q.g = c.g;
+      q.b = c.b;
     }
   }
-  deinitCompute();
+  if constexpr (kHasIntensity) q.intensity = intensityAt(pixel.x, pixel.y);
+  if constexpr (kHasConfidence) {
+    q.confidence = confidence.empty() ? std::numeric_limits<float>::quiet_NaN()
+                                      : static_cast<float>(confidence(pixel.x, pixel.y)) / 255.0f;
+  }
 }
 
 }  // namespace lidar_sgm
