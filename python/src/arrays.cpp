@@ -106,9 +106,13 @@ ImageView<const Rgb8> rgbView(const cv::Mat& rgb) {
 }
 
 void copyDisparity(const Image<std::int16_t>& disparity16, float* out) {
+  copyDisparity(disparity16, out, 0,
+                static_cast<std::size_t>(disparity16.width()) * static_cast<std::size_t>(disparity16.height()));
+}
+
+void copyDisparity(const Image<std::int16_t>& disparity16, float* out, std::size_t begin, std::size_t end) {
   const std::int16_t* d = disparity16.data();
-  const std::size_t n = static_cast<std::size_t>(disparity16.width()) * static_cast<std::size_t>(disparity16.height());
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     out[i] = d[i] == kInvalidDisparity ? std::numeric_limits<float>::quiet_NaN()
                                        : static_cast<float>(d[i]) / static_cast<float>(kDisparityScale);
   }

@@ -80,12 +80,17 @@ py::array_t<T> newArray(std::size_t rows, std::size_t cols) {
   return newArrayOfShape<T>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
 }
 /// x16 disparities (kInvalidDisparity) -> float [px], NaN where there is none, into `out`
-/// (width x height, row-major).
+/// (width x height, row-major); pixels [begin, end) of the row-major order only, where given.
 void copyDisparity(const Image<std::int16_t>& disparity16, float* out);
-/// The pixels of `image` into `out` (width x height, row-major).
+void copyDisparity(const Image<std::int16_t>& disparity16, float* out, std::size_t begin, std::size_t end);
+/// The pixels of `image` into `out` (width x height, row-major); [begin, end) only, where given.
+template <typename T>
+void copyImage(const Image<T>& image, T* out, std::size_t begin, std::size_t end) {
+  std::copy(image.data() + begin, image.data() + end, out + begin);
+}
 template <typename T>
 void copyImage(const Image<T>& image, T* out) {
-  std::copy(image.data(), image.data() + static_cast<std::size_t>(image.width()) * image.height(), out);
+  copyImage(image, out, 0, static_cast<std::size_t>(image.width()) * image.height());
 }
 /// x16 disparities -> a new (H, W) float32 array, NaN where there is none (with the GIL).
 py::array_t<float> disparityArray(const Image<std::int16_t>& disparity16);

@@ -24,17 +24,20 @@ namespace py = pybind11;
 namespace {
 
 /// Each point's confidence in [0, 1] (its pixel's 0..255 / 255, as the tool's `confidence` field)
-/// into an (M,) array's memory.
-void copyPointConfidence(const Image<std::uint8_t>& confidence, const geometry::DenseCloud& cloud, float* out) {
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
+/// into an (M,) array's memory: points [begin, end).
+void copyPointConfidence(const Image<std::uint8_t>& confidence, const geometry::DenseCloud& cloud, float* out,
+                         std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
     const geometry::PixelIndex p = cloud.pixels[i];
     out[i] = static_cast<float>(confidence(p.x, p.y)) / 255.0f;
   }
 }
 
-/// The colors of the cloud's points (their pixels in the left image) into an (M, 3) array's memory.
-void copyColors(const Densifier& densifier, const geometry::DenseCloud& cloud, std::uint8_t* colors) {
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
+/// The colors of the cloud's points (their pixels in the left image) into an (M, 3) array's memory:
+/// points [begin, end).
+void copyColors(const Densifier& densifier, const geometry::DenseCloud& cloud, std::uint8_t* colors,
+                std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
     const geometry::PixelIndex p = cloud.pixels[i];
     Rgb8 c;
     densifier.colorAt(p.x, p.y, c);
@@ -57,7 +60,7 @@ py::array_t<T> viewOf(std::vector<Element, Allocator>& elements, std::size_t col
 }
 
 /// The outputs of the frame `densifier` has just run. Called with the GIL held; the copies run
-/// without it.
+/// without it, on the Densifier's threads.
 DensifyResult resultOf(Densifier& densifier, bool colored) {
   auto* cloud = new geometry::DenseCloud(densifier.takeCloud());
   const py::capsule owner(cloud, [](void* p) { delete static_cast<geometry::DenseCloud*>(p); });
@@ -79,11 +82,17 @@ DensifyResult resultOf(Densifier& densifier, bool colored) {
   std::uint8_t* confidenceOut = confidence.mutable_data();
   {
     py::gil_scoped_release release;
-    if (colorsOut != nullptr) copyColors(densifier, *cloud, colorsOut);
-    copyDisparity(densifier.disparity(), disparityOut);
-    copyImage(densifier.depth(), depthOut);
-    if (haveConfidence) copyImage(densifier.confidence(), confidenceOut);
-    if (haveConfidence) copyPointConfidence(densifier.confidence(), *cloud, pointConfidenceOut);
+    densifier.parallelFor(cloud->size(), [&](std::size_t begin, std::size_t end) {
+      if (colorsOut != nullptr) copyColors(densifier, *cloud, colorsOut, begin, end);
+      if (haveConfidence) copyPointConfidence(densifier.confidence(), *cloud, pointConfidenceOut, begin, end);
+    });
+    densifier.parallelFor(height * width, [&](std::size_t begin, std::size_t end) {
+      copyDisparity(densifier.disparity(), disparityOut, begin, end);
+      if (haveConfidence) copyImage(densifier.confidence(), confidenceOut, begin, end);
+    });
+    const Image<float>& depthImage = densifier.depth();
+    densifier.parallelFor(static_cast<std::size_t>(depthImage.width()) * static_cast<std::size_t>(depthImage.height()),
+                          [&](std::size_t begin, std::size_t end) { copyImage(depthImage, depthOut, begin, end); });
   }
   DensifyResult r;
   r.points = std::move(points);
