@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <mutex>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -534,6 +536,33 @@ TEST(Densifier, OutputFiltersKeepDisparityAndCloudInAgreement) {
     EXPECT_GT(filtered.depth()(p.x, p.y), 0.0f);
   }
   for (int x = 0; x < kWidth; ++x) EXPECT_EQ(filtered.disparity()(x, 0), kInvalidDisparity) << x;  // the sky
+}
+
+// parallelFor tiles [0, count) with fixed ranges, each index in exactly one, at any thread
+// count; counts beyond an int's range go in blocks (the ranges are recorded, not iterated).
+TEST(DensifierParallelFor, TheRangesTileTheCountExactlyAtAnyThreadCount) {
+  const std::size_t huge = (std::size_t{1} << 31) + 5;
+  for (const int threads : {1, 2, 7}) {
+    for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{5}, std::size_t{433497}, huge}) {
+      Densifier densifier;
+      densifier.parameters().threads = threads;
+      std::vector<std::pair<std::size_t, std::size_t>> ranges;
+      std::mutex mutex;
+      densifier.parallelFor(count, [&](std::size_t begin, std::size_t end) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        ranges.emplace_back(begin, end);
+      });
+      std::sort(ranges.begin(), ranges.end());
+      std::size_t next = 0;
+      for (const auto& [begin, end] : ranges) {
+        EXPECT_EQ(begin, next) << "threads " << threads << ", count " << count;
+        EXPECT_LE(begin, end);
+        next = end;
+      }
+      EXPECT_EQ(next, count) << "threads " << threads;
+      EXPECT_LE(ranges.size(), static_cast<std::size_t>(threads) * (count / (std::size_t{1} << 31) + 1));
+    }
+  }
 }
 
 }  // namespace
