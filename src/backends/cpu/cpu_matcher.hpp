@@ -38,7 +38,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <memory>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -136,7 +135,10 @@ class CpuMatcher final : public MatcherBackend {
   static bool inBands(const Frame& frame);
   template <typename PathT>
   void sweepBands(const Frame& frame);
-  /// Band 0 holds the chunks [0, splitChunk), band 1 the rest.
+  /// Band 0 holds the chunks [0, splitChunk), band 1 the rest: its rows in the order of its own
+  /// first-phase walk (band 0 downward, band 1 upward), and the i-th of them.
+  static int bandRowCount(const Frame& frame, int band, int splitChunk);
+  static int bandRow(const Frame& frame, int band, int i);
   template <typename PathT>
   void bandCosts(const Frame& frame, int band, int splitChunk, Worker& worker);
   template <typename PathT>
@@ -210,10 +212,10 @@ class CpuMatcher final : public MatcherBackend {
   HugePageVector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row
   std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
-  // Who costs each row in the bands' phase 1: its band, or the other band (bandHelp).
-  enum RowClaim : std::uint8_t { kUnclaimed, kOwner, kHelper, kHelped };
-  std::unique_ptr<std::atomic<std::uint8_t>[]> rowClaims_;
-  std::size_t rowClaimCount_ = 0;
+  // Who costs each row in the bands' phase 1: the first band to claim it; kHelped once the other
+  // band (bandHelp) has put its costs in the volume.
+  enum RowClaim : std::uint8_t { kUnclaimed, kClaimed, kHelped };
+  std::vector<std::atomic<std::uint8_t>> rowClaims_;
   SearchWindows windows_;  // the gated search's windows (Parameters::gatedSearch)
   Image<std::int16_t> rawDisparity_;
   Image<std::int16_t> bestIndex_;

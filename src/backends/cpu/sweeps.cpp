@@ -7,10 +7,10 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
-#include <memory>
 #include <thread>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_matcher.hpp"
@@ -193,9 +193,8 @@ void CpuMatcher::sweepBands(const Frame& f) {
   const int H = f.plan.height;
   const int chunks = chunkCount(H, kChunkRows);
   const int m = chunks / 2;  // band 0: chunks [0, m), band 1: [m, chunks); both non-empty
-  if (rowClaimCount_ < static_cast<std::size_t>(H)) {
-    rowClaims_ = std::make_unique<std::atomic<std::uint8_t>[]>(static_cast<std::size_t>(H));
-    rowClaimCount_ = static_cast<std::size_t>(H);
+  if (rowClaims_.size() < static_cast<std::size_t>(H)) {
+    rowClaims_ = std::vector<std::atomic<std::uint8_t>>(static_cast<std::size_t>(H));  // atomics do not move
   }
   for (int y = 0; y < H; ++y) rowClaims_[static_cast<std::size_t>(y)].store(kUnclaimed, std::memory_order_relaxed);
 #pragma omp parallel num_threads(2)
@@ -215,19 +214,24 @@ void CpuMatcher::sweepBands(const Frame& f) {
 
 // Phase 1 of a band: its rows' costs and its own direction's vertical paths, keeping checkpoints.
 // A row the other band has claimed (bandHelp) is only stepped, once its costs are in the volume.
+int CpuMatcher::bandRowCount(const Frame& f, int band, int splitChunk) {
+  const int yMid = splitChunk * kChunkRows;
+  return band == 0 ? yMid : f.plan.height - yMid;
+}
+
+int CpuMatcher::bandRow(const Frame& f, int band, int i) { return band == 0 ? i : f.plan.height - 1 - i; }
+
 template <typename PathT>
 void CpuMatcher::bandCosts(const Frame& f, int band, int splitChunk, Worker& w) {
-  const int H = f.plan.height;
-  const int yMid = splitChunk * kChunkRows;
-  const int count = band == 0 ? yMid : H - yMid;
+  const int count = bandRowCount(f, band, splitChunk);
   for (int i = 0; i < count; ++i) {
-    const int y = band == 0 ? i : H - 1 - i;
+    const int y = bandRow(f, band, i);
     // The other walk restarts here: band 0 at a chunk's last row, band 1 at a chunk's first.
     const bool checkpoint = band == 0 ? y % kChunkRows == kChunkRows - 1 : y % kChunkRows == 0;
     const int group = checkpoint ? y / kChunkRows : -1;
     std::atomic<std::uint8_t>& claim = rowClaims_[static_cast<std::size_t>(y)];
     std::uint8_t expected = kUnclaimed;
-    if (claim.compare_exchange_strong(expected, kOwner, std::memory_order_relaxed)) {
+    if (claim.compare_exchange_strong(expected, kClaimed, std::memory_order_relaxed)) {
       costAndStepRow<PathT>(f, y, i, 0, f.plan.width, band, group, w);
       continue;
     }
@@ -241,14 +245,11 @@ void CpuMatcher::bandCosts(const Frame& f, int band, int splitChunk, Worker& w) 
 // work (a KITTI frame's LiDAR points lie in the bottom band: its costs took twice the top band's
 // time, BENCHMARK.md), and whichever band finishes first takes over the other's costs.
 void CpuMatcher::bandHelp(const Frame& f, int band, int splitChunk, Worker& w) {
-  const int H = f.plan.height;
-  const int yMid = splitChunk * kChunkRows;
-  const int count = band == 0 ? yMid : H - yMid;
-  for (int i = count - 1; i >= 0; --i) {
-    const int y = band == 0 ? i : H - 1 - i;
+  for (int i = bandRowCount(f, band, splitChunk) - 1; i >= 0; --i) {
+    const int y = bandRow(f, band, i);
     std::atomic<std::uint8_t>& claim = rowClaims_[static_cast<std::size_t>(y)];
     std::uint8_t expected = kUnclaimed;
-    if (!claim.compare_exchange_strong(expected, kHelper, std::memory_order_relaxed)) return;
+    if (!claim.compare_exchange_strong(expected, kClaimed, std::memory_order_relaxed)) return;
     costWholeRow(f, y, w);
     claim.store(kHelped, std::memory_order_release);  // the costs before the mark
   }
