@@ -1,7 +1,9 @@
 #include "bench_opencv_sgbm.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include <opencv2/calib3d.hpp>
@@ -49,7 +51,7 @@ double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int threads, in
 }
 
 PairedTiming pairWithOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int threads,
-                                const std::function<void()>& ours, int runs, int warmups) {
+                                const std::function<void()>& ours, int runs, int warmups, int idleMs) {
   const int previousThreads = cv::getNumThreads();
   cv::setNumThreads(threads);
   const cv::Ptr<cv::StereoSGBM> sgbm = createSgbm(s);
@@ -57,8 +59,16 @@ PairedTiming pairWithOpenCvSgbm(const Frame& frame, const SgbmSettings& s, int t
   const cv::Mat right = matView(frame.right);
   cv::Mat disparity;
   std::vector<double> oursMs, sgbmMs, ratios;
+  // After a parallel region each library's workers spin for a while before they sleep (libgomp:
+  // ~8-9 ms of a core on this project's 2-core VM), and a spinning worker takes a core from the
+  // frame that follows. Back to back, ours would run beside OpenCV's spinning threads and OpenCV
+  // beside ours. An idle gap before each frame lets both start from sleeping workers, as they do
+  // between a camera's frames.
+  const auto idle = [idleMs] { std::this_thread::sleep_for(std::chrono::milliseconds(idleMs)); };
   for (int i = 0; i < warmups + runs; ++i) {
+    idle();
     const double a = wallClockMs(ours);
+    idle();
     const double b = wallClockMs([&] { sgbm->compute(left, right, disparity); });
     if (i < warmups) continue;
     oursMs.push_back(a);

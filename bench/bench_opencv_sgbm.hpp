@@ -34,7 +34,9 @@ double timeOpenCvSgbm(const Frame& frame, const SgbmSettings& settings, int thre
 /// Ours against OpenCV frame by frame: `runs` pairs (after `warmups` of each), one of our frames
 /// (`ours`) then one of cv::StereoSGBM, so that both see the same machine state; the ratio is
 /// taken per pair. On a shared VM whose speed drifts by 10-30 % between minutes, separate medians
-/// measured one after the other are not comparable; pairs are.
+/// measured one after the other are not comparable; pairs are. Each frame of either starts after
+/// `idleMs` milliseconds of idling (kPairIdleMs in the bench), so that neither runs beside the
+/// other's workers still spinning after their last frame.
 struct PairedTiming {
   double oursMs = 0;   ///< median of our frames
   double sgbmMs = 0;   ///< median of OpenCV's frames
@@ -43,7 +45,7 @@ struct PairedTiming {
   double ratioMax = 0;
 };
 PairedTiming pairWithOpenCvSgbm(const Frame& frame, const SgbmSettings& settings, int threads,
-                                const std::function<void()>& ours, int runs, int warmups);
+                                const std::function<void()>& ours, int runs, int warmups, int idleMs);
 
 }  // namespace bench
 }  // namespace lidar_sgm

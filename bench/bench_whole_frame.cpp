@@ -65,7 +65,7 @@ WholeFrame loadKitti2015LidarFrame(const std::string& dataRoot, const std::strin
 
 WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
                                         const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups,
-                                        bool hiddenLidar, float witnessScale, bool lidarAnchor) {
+                                        int idleMs, bool hiddenLidar, float witnessScale, bool lidarAnchor) {
   Densifier densifier;  // the tools' defaults: DensifierConfig as constructed
   DensifierConfig config = densifier.config();
   config.hiddenLidar.enabled = hiddenLidar;
@@ -109,7 +109,7 @@ WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend
   constexpr int kFramesAlone = 3;
   for (int i = 0; i < kFramesAlone; ++i) densifier.run(frame.points);
   m.densifierPeakRssMiB = peakRssMiB();
-  m.paired = pairWithOpenCvSgbm(sgbmPair, sgbm, threads, oneFrame, runs, warmups);
+  m.paired = pairWithOpenCvSgbm(sgbmPair, sgbm, threads, oneFrame, runs, warmups, idleMs);
   m.frameMs = m.paired.oursMs;
   m.projectMs = median(project);
   m.matchMs = median(match);

@@ -53,12 +53,13 @@ struct WholeFrameMeasurement {
 /// Three Densifier frames alone (densifierPeakRssMiB), then
 /// `runs` pairs after `warmups`: one Densifier frame (defaults, fused, `backend`, `scale`, and
 /// `matcher`'s threads and gated search), then one cv::StereoSGBM::compute with `sgbm` on `sgbmPair`
-/// (the pair at the scale matched) with as many threads. Throws std::logic_error if a frame is not fused.
+/// (the pair at the scale matched) with as many threads, each frame after `idleMs` ms of idling
+/// (pairWithOpenCvSgbm). Throws std::logic_error if a frame is not fused.
 /// `hiddenLidar` false turns the Densifier's hidden-LiDAR filter off (its default is on);
 /// `witnessScale` is its witness's scale (HiddenLidarOptions::witnessScale).
 WholeFrameMeasurement measureWholeFrame(const WholeFrame& frame, Backend backend, const Parameters& matcher, float scale,
                                         const Frame& sgbmPair, const SgbmSettings& sgbm, int runs, int warmups,
-                                        bool hiddenLidar = true, float witnessScale = 0.5f,
+                                        int idleMs, bool hiddenLidar = true, float witnessScale = 0.5f,
                                         bool lidarAnchor = true);
 
 }  // namespace bench

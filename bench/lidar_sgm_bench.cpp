@@ -45,6 +45,10 @@ namespace {
 // Two untimed frames first by default: the first allocates the matcher's buffers and faults in
 // their pages, the second warms the caches; a sequence of frames never pays either again.
 constexpr int kDefaultWarmups = 2;
+// Idle milliseconds before each frame of a pair with OpenCV: longer than libgomp's workers spin
+// after a parallel region (~9 ms here), so that neither library's frame runs beside the other's
+// spinning threads (bench_opencv_sgbm.hpp). A camera's 10-100 Hz leaves gaps like it.
+constexpr int kDefaultPairIdleMs = 30;
 const char* kKittiFrame = "000000_10";
 
 struct Options {
@@ -52,6 +56,7 @@ struct Options {
   int threads = 0;
   int runs = 20;
   int warmups = kDefaultWarmups;
+  int pairIdleMs = kDefaultPairIdleMs;  ///< idle before each frame of a pair with OpenCV
   int numDisparities = 128;
   int paths = 4;
   bool hiddenLidar = true;  ///< the whole frame's hidden-LiDAR filter (-no_hidden_lidar_filter: off)
@@ -90,6 +95,8 @@ void printUsage(const char* program) {
       "  -threads N              worker threads, 0 = hardware threads (default 0)\n"
       "  -runs N                 timed frames per configuration, median reported (default 20)\n"
       "  -warmups N              untimed frames before them (default %d)\n"
+      "  -pair_idle_ms N         idle ms before each frame paired with OpenCV's, so that neither runs\n"
+      "                          beside the other's threads still spinning (default %d; 0: back to back)\n"
       "  -configs LIST           comma list of fused,stereo,lidar,paths8,half, and with -kitti_frame\n"
       "                          densifier,densifier_half (default: all, or with -kitti_frame those two)\n"
       "  -num_disparities N      (default 128)\n"
@@ -105,7 +112,7 @@ void printUsage(const char* program) {
       "  -h, --help              this help\n"
       "  --version               the tool's name and version\n"
       "Every option also takes the GNU spelling: --runs 5, --runs=5.\n",
-      program, kKittiFrame, LIDAR_SGM_SHARED_DATA, kDefaultWarmups);
+      program, kKittiFrame, LIDAR_SGM_SHARED_DATA, kDefaultWarmups, kDefaultPairIdleMs);
 }
 
 std::vector<std::string> splitCommas(const std::string& list) {
@@ -121,7 +128,7 @@ std::vector<std::string> splitCommas(const std::string& list) {
 /// The options the bench takes (-h and --version are every tool's).
 apps::Arguments parseArguments(int argc, char** argv) {
   return apps::Arguments(argc, argv,
-                         {"backend", "threads", "runs", "warmups", "configs", "num_disparities", "paths", "width",
+                         {"backend", "threads", "runs", "warmups", "pair_idle_ms", "configs", "num_disparities", "paths", "width",
                           "height", "data", "left", "right", "lidar", "frame_dir", "export_frame", "kitti_frame",
                           "gated_search_margin", "gated_search_rows", "hidden_lidar_scale"},
                          {"synthetic", "growth", "no_gated_search", "no_hidden_lidar_filter", "no_lidar_anchor"});
@@ -136,6 +143,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.threads = args.integer("threads", o.threads);
   o.runs = args.integer("runs", o.runs);
   o.warmups = args.integer("warmups", o.warmups);
+  o.pairIdleMs = args.integer("pair_idle_ms", o.pairIdleMs);
   o.configs = splitCommas(args.text("configs", ""));
   o.numDisparities = args.integer("num_disparities", o.numDisparities);
   o.paths = args.integer("paths", o.paths);
@@ -158,6 +166,7 @@ Options optionsFrom(const apps::Arguments& args) {
   o.gate.gatedSearchRows = args.integer("gated_search_rows", o.gate.gatedSearchRows);
   if (o.runs < 1) throw std::invalid_argument("-runs must be at least 1");
   if (o.warmups < 0) throw std::invalid_argument("-warmups must be at least 0");
+  if (o.pairIdleMs < 0 || o.pairIdleMs > 10000) throw std::invalid_argument("-pair_idle_ms must be in [0, 10000]");
   if (o.width < 16 || o.height < 16) throw std::invalid_argument("-width and -height must be at least 16");
   const int filesGiven = !o.left.empty() + !o.right.empty() + !o.lidar.empty();
   if (filesGiven != 0 && filesGiven != 3) throw std::invalid_argument("-left, -right and -lidar go together");
@@ -378,10 +387,12 @@ void compareWithOpenCv(const Options& o, const Frame& frame, Backend backend, co
                   *ours / sgbmMs, ms(*ours).c_str(), ms(sgbmMs).c_str());
     }
   }
-  std::printf("  paired, %d frames each, ours then OpenCV in turn (median ratio [min, max]):\n", o.runs);
+  std::printf("  paired, %d frames each, ours then OpenCV in turn, each after %d ms idle (median ratio [min, max]):\n",
+              o.runs, o.pairIdleMs);
   for (const MatchMode mode : {MatchMode::StereoOnly, MatchMode::Fused}) {
     FrameRunner runner(backend, base, frame, mode);
-    const PairedTiming t = pairWithOpenCvSgbm(frame, settings, threads, [&] { runner.run(); }, o.runs, o.warmups);
+    const PairedTiming t = pairWithOpenCvSgbm(frame, settings, threads, [&] { runner.run(); }, o.runs, o.warmups,
+                                              o.pairIdleMs);
     if (runner.lastMode() != mode) throw std::logic_error("the paired run matched in the wrong mode");
     std::printf("  ours / OpenCV, %-11s: %.2f [%.2f, %.2f] (ours %s ms, OpenCV %s ms)\n", toString(mode).c_str(),
                 t.ratio, t.ratioMin, t.ratioMax, ms(t.oursMs).c_str(), ms(t.sgbmMs).c_str());
@@ -477,8 +488,8 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
   std::printf("\nWhole frame: Densifier::run with the tools' defaults (fused; range from the LiDAR; confidence, "
               "sky and outlier filters, minimum confidence; a colored cloud in the LiDAR frame), %s, %d threads;\n"
               "paired with OpenCV's StereoSGBM (stereo only) on the pair at the scale matched, %d threads: %d pairs "
-              "after %d warm-up pairs\n",
-              toString(backend).c_str(), threads, threads, o.runs, o.warmups);
+              "after %d warm-up pairs, each frame after %d ms idle (-pair_idle_ms)\n",
+              toString(backend).c_str(), threads, threads, o.runs, o.warmups, o.pairIdleMs);
   std::printf("\n| config | frame ms | project | match | of which stereo witness | of which core stages | of which "
               "confidence | of which filters | reproject | disparities | cloud points | OpenCV SGBM ms | paired ratio [min, "
               "max] | peak RSS MiB, Densifier alone / with SGBM |\n"
@@ -499,7 +510,7 @@ void printWholeFrames(const Options& o, const WholeFrame& whole, Backend backend
       sgbmPair = resizedFrame(whole.pair, (whole.pair.width() + 1) / 2, (whole.pair.height() + 1) / 2);
     }
     const WholeFrameMeasurement m =
-        measureWholeFrame(whole, backend, base, scale, sgbmPair, sgbm, o.runs, o.warmups, o.hiddenLidar,
+        measureWholeFrame(whole, backend, base, scale, sgbmPair, sgbm, o.runs, o.warmups, o.pairIdleMs, o.hiddenLidar,
                           o.witnessScale, o.lidarAnchor);
     const double peak = peakRssMiB();
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %d | %s | %s (%s, %d disp.) | %.2f [%.2f, %.2f] | %.1f / %.1f |\n",

@@ -132,5 +132,15 @@ TEST_F(BenchWholeFrame, WholeFrameConfigurationsNeedAFrameAndAMissingFrameIsName
   EXPECT_NE(missing.output.find("999999_10"), std::string::npos) << missing.output;
 }
 
+// The idle gap before each frame of a pair is printed with the table, and a negative one refused.
+TEST_F(BenchWholeFrame, PairIdleIsPrintedAndANegativeOneRefused) {
+  const RunResult r = run(bench() + " -kitti_frame 000007 -configs densifier -runs 1 -warmups 0 -pair_idle_ms 7");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("each frame after 7 ms idle (-pair_idle_ms)"), std::string::npos) << r.output;
+  const RunResult negative = run(bench() + " -kitti_frame 000007 -runs 1 -pair_idle_ms -1");
+  EXPECT_EQ(negative.exitCode, 1) << negative.output;
+  EXPECT_NE(negative.output.find("-pair_idle_ms must be in [0, 10000]"), std::string::npos) << negative.output;
+}
+
 }  // namespace
 }  // namespace lidar_sgm
