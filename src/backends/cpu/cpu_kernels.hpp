@@ -111,13 +111,13 @@ class LidarCostRows {
 void searchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
                       std::int16_t* high16, SearchWindows& windows);
 
-// lidar_cost.cpp: C_L (Eq. 4) of pixel (x, y) into cost[0 .. D-1]; returns whether a point
-// touches the pixel (false: every cost is 0, no information).
-bool lidarCostPixel(const LidarPoints& points, const LidarCostRows& rows, int x, int y, int minDisparity,
-                    int numDisparities, std::uint8_t* cost);
+// lidar_cost.cpp: C_L (Eq. 4) of row y's pixels x0 .. x1-1 whose `touched` (lidarTouchedRow) is
+// set into cost + (x - x0) * numDisparities; the other pixels' costs are left as they are (C_L is
+// 0 there: no point, no information).
+void lidarCostRow(const LidarPoints& points, const LidarCostRows& rows, int y, int x0, int x1, int minDisparity,
+                  int numDisparities, const std::uint8_t* touched, std::uint8_t* cost);
 
-// lidar_cost.cpp: 1 where a point lies in the pixel's 3x3 neighbourhood (lidarCostPixel's
-// return value, for a whole row at once), else 0.
+// lidar_cost.cpp: 1 where a point lies in the pixel's 3x3 neighbourhood, else 0.
 void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched);
 
 // fusion.cpp: Eq. 5 over n bytes: (w * C_L + (256 - w) * C_S + 128) >> 8.

@@ -4,6 +4,7 @@
 // each point touches a handful of disparities, not all D.
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "backends/common/lidar_search_windows.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
@@ -34,37 +35,48 @@ void minimumInto(std::uint8_t* __restrict cost, const std::uint8_t* __restrict r
 
 }  // namespace
 
-bool lidarCostPixel(const LidarPoints& points, const LidarCostRows& rows, int x, int y, int minDisparity,
-                    int numDisparities, std::uint8_t* cost) {
+void lidarCostRow(const LidarPoints& points, const LidarCostRows& rows, int y, int x0, int x1, int minDisparity,
+                  int numDisparities, const std::uint8_t* touched, std::uint8_t* cost) {
   const int width = points.width();
   const int height = points.height();
   const int reach = rows.reach();  // |diff16| >= reach costs the cap
   const int span = rows.width();
-  bool touched = false;
-  std::memset(cost, rows.cap(), static_cast<std::size_t>(numDisparities));
-  // The points of the pixel itself and of its 8 neighbours are associated with it (Sec. III-B).
+  const auto D = static_cast<std::size_t>(numDisparities);
+  for (int x = x0; x < x1; ++x) {
+    if (touched[x] != 0) std::memset(cost + static_cast<std::size_t>(x - x0) * D, rows.cap(), D);
+  }
+  // The points of a pixel and of its 8 neighbours are associated with it (Sec. III-B): each point
+  // of rows y-1 .. y+1 in columns x0-1 .. x1 takes the minimum into its own column's pixel and
+  // the two beside it. A row's points lie side by side in pixel order (LidarPoints), so the run of
+  // them is read at once, not nine cells per pixel, most of them empty. Every pixel a point reaches
+  // is touched (lidarTouchedRow): the cap was set above.
+  const int* starts = points.pixelStarts().data();
+  const int* disparities = points.disparities16().data();
+  const int* pixels = points.pointPixels().data();
+  const int columnBegin = std::max(0, x0 - 1);
+  const int columnEnd = std::min(width, x1 + 1);
   for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
-    for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
-      for (const int* p = points.begin(nx, ny); p != points.end(nx, ny); ++p) {
-        touched = true;
-        const int dP = *p;
-        const int q = floorDivide(dP - reach, kDisparityScale);
-        const std::uint8_t* row = rows.row(dP - reach - kDisparityScale * q);
-        const int first = q - minDisparity;  // the index of row[0] in cost
+    const std::size_t rowStart = static_cast<std::size_t>(ny) * width;
+    const int last = starts[rowStart + columnEnd];  // starts[W * H] ends the last row
+    for (int i = starts[rowStart + columnBegin]; i < last; ++i) {
+      const int px = pixels[i] - static_cast<int>(rowStart);
+      const int dP = disparities[i];
+      const int q = floorDivide(dP - reach, kDisparityScale);
+      const std::uint8_t* row = rows.row(dP - reach - kDisparityScale * q);
+      const int first = q - minDisparity;  // the index of row[0] in a pixel's costs
+      for (int nx = std::max(x0, px - 1); nx <= std::min(x1 - 1, px + 1); ++nx) {
+        std::uint8_t* c = cost + static_cast<std::size_t>(nx - x0) * D;
         if (first >= 0 && first + span <= numDisparities) {
-          minimumInto(cost + first, row, span);
+          minimumInto(c + first, row, span);
         } else {
           // At the ends of the range: the row's part inside it (the rest costs the cap anyway).
           for (int j = std::max(0, -first); j < std::min(span, numDisparities - first); ++j) {
-            cost[first + j] = std::min(cost[first + j], row[j]);
+            c[first + j] = std::min(c[first + j], row[j]);
           }
         }
       }
     }
   }
-  // No associated point: no information, the same (zero) cost for every disparity.
-  if (!touched) std::memset(cost, 0, static_cast<std::size_t>(numDisparities));
-  return touched;
 }
 
 void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched) {
@@ -81,11 +93,17 @@ void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched) {
 void lidarCost(const LidarPoints& points, const LidarCostTable& table, int minDisparity, MatchingCostVolume& cost,
                ImageView<std::uint8_t> support, int threads) {
   const LidarCostRows rows(table);
+  const int width = points.width();
   parallelRanges(points.height(), threads, [&](int y0, int y1) {
+    std::vector<std::uint8_t> touched(static_cast<std::size_t>(width));
     for (int y = y0; y < y1; ++y) {
-      for (int x = 0; x < points.width(); ++x) {
-        const bool touched = lidarCostPixel(points, rows, x, y, minDisparity, cost.numDisparities(), cost.at(x, y));
-        if (!support.empty()) support(x, y) = touched ? 1 : 0;
+      lidarTouchedRow(points, y, touched.data());
+      std::uint8_t* row = cost.at(0, y);  // the row's pixels lie side by side, D costs each
+      lidarCostRow(points, rows, y, 0, width, minDisparity, cost.numDisparities(), touched.data(), row);
+      for (int x = 0; x < width; ++x) {
+        // No associated point: no information, the same (zero) cost for every disparity.
+        if (touched[x] == 0) std::memset(cost.at(x, y), 0, static_cast<std::size_t>(cost.numDisparities()));
+        if (!support.empty()) support(x, y) = touched[x];
       }
     }
   });

@@ -67,13 +67,9 @@ void CpuMatcher::lidarCostRange(const Frame& f, int y, int x0, int x1, std::uint
   const bool zeroUntouched = plan.mode == MatchMode::LidarOnly || plan.upCamera();
   std::uint8_t* support = f.out.support.view().row(y);
   const std::uint8_t* touched = touched_.view().row(y);
+  lidarCostRow(*f.lidar, lidarRows_, y, x0, x1, plan.minDisparity, plan.D, touched, lidar);
   for (int x = x0; x < x1; ++x) {
-    std::uint8_t* c = lidar + static_cast<std::size_t>(x - x0) * plan.D;
-    if (touched[x] != 0) {
-      lidarCostPixel(*f.lidar, lidarRows_, x, y, plan.minDisparity, plan.D, c);
-    } else if (zeroUntouched) {
-      std::memset(c, 0, static_cast<std::size_t>(plan.D));
-    }
+    if (touched[x] == 0 && zeroUntouched) std::memset(lidar + static_cast<std::size_t>(x - x0) * plan.D, 0, plan.D);
     support[x] = touched[x];
   }
 }
