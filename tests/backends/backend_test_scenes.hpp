@@ -3,6 +3,7 @@
 // stage sees disparity changes), 8- and 16-bit, stored with padded rows, and LiDAR points that
 // include several points per pixel and disparities outside the search range.
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -90,6 +91,18 @@ inline BackendScene makeBackendScene(int width, int height, int minDisparity, in
         samples.push_back({x, y, (minDisparity + numDisparities + 5) * kDisparityScale});
       }
     }
+  }
+  // And isolated points at random pixels of the upper third and in the four corners: the rows above
+  // cover whole runs of columns, which would hide a point's neighbourhood one pixel short on a side.
+  std::uniform_int_distribution<int> column(0, width - 1);
+  std::uniform_int_distribution<int> row(0, std::max(0, height / 3 - 1));
+  const auto isolated = [&](int x, int y) {
+    const double d = s.disparity(x, y) + noise(engine);
+    samples.push_back({x, y, std::max(1, static_cast<int>(d * kDisparityScale))});
+  };
+  for (int i = 0; i < std::max(4, width * height / 400); ++i) isolated(column(engine), row(engine));
+  for (const int y : {0, height - 1}) {
+    for (const int x : {0, width - 1}) isolated(x, y);
   }
   scene.lidar = LidarPoints(width, height, samples);
   return scene;

@@ -82,9 +82,14 @@ void lidarCostRow(const LidarPoints& points, const LidarCostRows& rows, int y, i
 void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched) {
   const int width = points.width();
   std::fill(touched, touched + width, std::uint8_t{0});
+  // From each row's run of points (as lidarCostRow), not from every pixel's count.
+  const int* starts = points.pixelStarts().data();
+  const int* pixels = points.pointPixels().data();
   for (int ny = std::max(0, y - 1); ny <= std::min(points.height() - 1, y + 1); ++ny) {
-    for (int x = 0; x < width; ++x) {
-      if (points.count(x, ny) == 0) continue;
+    const std::size_t rowStart = static_cast<std::size_t>(ny) * width;
+    const int last = starts[rowStart + width];
+    for (int i = starts[rowStart]; i < last; ++i) {
+      const int x = pixels[i] - static_cast<int>(rowStart);
       for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) touched[nx] = 1;
     }
   }
