@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "backends/common/lidar_search_windows.hpp"
+#include "backends/common/search_window_rule.hpp"
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
 #include "backends/cpu/parallel.hpp"
@@ -132,6 +133,36 @@ void lidarCoverage(const LidarPoints& points, int rows, ImageView<std::uint8_t> 
   });
 }
 
+namespace {
+
+// lidarSearchExtremes (lidar_search_windows.hpp) from each row's run of points, as lidarCostRow:
+// the same extremes, without visiting the pixels that hold none.
+void searchExtremesOfRows(const LidarPoints& points, int y0, int y1, SearchWindows& windows) {
+  const int width = points.width();
+  SearchWindows::Scratch& scratch = windows.scratch();
+  const int* starts = points.pixelStarts().data();
+  const int* disparities = points.disparities16().data();
+  const int* pixels = points.pointPixels().data();
+  for (int y = y0; y < y1; ++y) {
+    const std::size_t rowStart = static_cast<std::size_t>(y) * width;
+    std::int16_t* lowest16 = scratch.lowest16.data() + rowStart;
+    std::int16_t* highest16 = scratch.highest16.data() + rowStart;
+    std::fill(lowest16, lowest16 + width, kSearchNoLowest);
+    std::fill(highest16, highest16 + width, kSearchNoHighest);
+    const int last = starts[rowStart + width];
+    for (int i = starts[rowStart]; i < last; ++i) {
+      const int x = pixels[i] - static_cast<int>(rowStart);
+      const std::int16_t value = searchClamp16(disparities[i]);
+      for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+        lowest16[nx] = std::min(lowest16[nx], value);
+        highest16[nx] = std::max(highest16[nx], value);
+      }
+    }
+  }
+}
+
+}  // namespace
+
 // lidarSearchWindows' two passes, each with its rows split among the threads (single-threaded,
 // the vertical pass's 2 * rows + 1 rows of extremes per row cost more than the gate saved); each
 // range's two rows of that pass in the windows' scratch.
@@ -139,7 +170,7 @@ void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisp
                         SearchWindows& windows, int threads) {
   const int height = points.height();
   prepareLidarSearchWindows(points, numDisparities, windows);
-  parallelRanges(height, threads, [&](int y0, int y1) { lidarSearchExtremes(points, y0, y1, windows); });
+  parallelRanges(height, threads, [&](int y0, int y1) { searchExtremesOfRows(points, y0, y1, windows); });
   const std::size_t width = static_cast<std::size_t>(points.width());
   SearchWindows::Scratch& scratch = windows.scratch();
   scratch.rowLowest16.resize(width * static_cast<std::size_t>(rangeCount(height, threads)));
