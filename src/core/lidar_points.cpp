@@ -32,22 +32,23 @@ void LidarPoints::assign(int width, int height, const std::vector<LidarSample>& 
                                       std::to_string(height) + " image");
       throw std::invalid_argument(os.str());
     }
-    ++pixelStart_[pixelOf(s.x, s.y) + 1];
+    ++pixelStart_[pixelOf(s.x, s.y)];
   }
-  // Counting sort into compressed rows: prefix sums give each pixel's first slot, which serves
-  // as the pixel's cursor while the samples are placed in their order (no copy of the offsets)
-  // and so ends as the next pixel's first slot: shifted back by one afterwards.
-  for (std::size_t i = 1; i < pixelStart_.size(); ++i) pixelStart_[i] += pixelStart_[i - 1];
+  // Counting sort into compressed rows: the prefix sums give each pixel's end, which serves as
+  // the pixel's cursor while the samples are placed from the last to the first (no copy of the
+  // offsets), so that a pixel's samples keep their order and the cursor ends at its first slot.
+  const std::size_t pixels = pixelStart_.size() - 1;
+  for (std::size_t i = 1; i < pixels; ++i) pixelStart_[i] += pixelStart_[i - 1];
+  pixelStart_[pixels] = static_cast<int>(samples.size());
   disparities16_.resize(samples.size());
   pointPixels_.resize(samples.size());
-  for (const LidarSample& s : samples) {
+  for (std::size_t i = samples.size(); i-- > 0;) {
+    const LidarSample& s = samples[i];
     const std::size_t pixel = pixelOf(s.x, s.y);
-    const auto slot = static_cast<std::size_t>(pixelStart_[pixel]++);
+    const auto slot = static_cast<std::size_t>(--pixelStart_[pixel]);
     pointPixels_[slot] = static_cast<int>(pixel);
     disparities16_[slot] = s.disparity16;
   }
-  for (std::size_t i = pixelStart_.size() - 1; i > 0; --i) pixelStart_[i] = pixelStart_[i - 1];
-  pixelStart_[0] = 0;
   width_ = width;
   height_ = height;
 }
