@@ -106,10 +106,10 @@ class LidarCostRows {
   std::vector<std::uint8_t> rows_;
 };
 
-// search_window_rows.cpp: lidarSearchWindowRows (lidar_search_windows.hpp), the same windows bit
-// for bit, a vector of pixels at a time.
-void searchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
-                      std::int16_t* high16, SearchWindows& windows);
+// search_window_rows.cpp: lidarSearchWindowRows (lidar_search_windows.hpp) for `points`, the same
+// windows bit for bit, a vector of pixels at a time.
+void searchWindowRows(const LidarPoints& points, int minDisparity, int rows, int margin, int y0, int y1,
+                      std::int16_t* low16, std::int16_t* high16, SearchWindows& windows);
 
 // lidar_cost.cpp: C_L (Eq. 4) of row y's pixels x0 .. x1-1 whose `touched` (lidarTouchedRow) is
 // set into cost + (x - x0) * numDisparities; the other pixels' costs are left as they are (C_L is

@@ -177,7 +177,7 @@ void lidarSearchWindows(const LidarPoints& points, int minDisparity, int numDisp
   scratch.rowHighest16.resize(width * static_cast<std::size_t>(rangeCount(height, threads)));
   parallelParts(height, threads, [&](int part, int y0, int y1) {
     const std::size_t offset = width * static_cast<std::size_t>(part);
-    searchWindowRows(minDisparity, rows, margin, y0, y1, scratch.rowLowest16.data() + offset,
+    searchWindowRows(points, minDisparity, rows, margin, y0, y1, scratch.rowLowest16.data() + offset,
                      scratch.rowHighest16.data() + offset, windows);
   });
 }

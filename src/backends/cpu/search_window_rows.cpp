@@ -1,5 +1,5 @@
 // The LiDAR gate's second pass (lidar_search_windows.hpp), fast CPU backend: each row's extremes
-// over +-rows rows as the host takes them (lidarSearchRowExtremes), then each pixel's window
+// over +-rows rows as the host takes them (lidarSearchRowExtremes, on the rows that hold a point), then each pixel's window
 // (search_window_rule.hpp's searchWindowOf) for a whole vector of pixels at once in 16-bit
 // lanes. The rule's branches become masks; every intermediate value fits 16 bits (x16
 // disparities in [-32768, 32767] give pixel disparities in [-2048, 2048], the margin and the
@@ -10,6 +10,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -49,14 +50,37 @@ HWY_INLINE void WindowsOf(DI d, hn::Vec<DI> low, hn::Vec<DI> high, int minDispar
   hn::StoreU(hn::IfThenElse(whole, D, windowCount), d, count);
 }
 
-void SearchWindowRowsImpl(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
-                          std::int16_t* high16, SearchWindows& windows) {
+// lidarSearchRowExtremes over the rows that hold a point only: pass 1 left the others at the
+// sentinels (kSearchNoLowest, kSearchNoHighest), which change no minimum and no maximum. A KITTI
+// scan has a point on one row in three or four of its lower part and on none above it.
+void RowExtremesOfPointRows(const LidarPoints& points, int rows, int y, std::int16_t* low16, std::int16_t* high16,
+                            const SearchWindows& windows) {
+  const int width = windows.width();
+  const int height = windows.height();
+  const SearchWindows::Scratch& scratch = windows.scratch();
+  const int* starts = points.pixelStarts().data();
+  std::fill(low16, low16 + width, kSearchNoLowest);
+  std::fill(high16, high16 + width, kSearchNoHighest);
+  for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
+    const std::size_t rowStart = static_cast<std::size_t>(ny) * width;
+    if (starts[rowStart] == starts[rowStart + width]) continue;  // no point on row ny
+    const std::int16_t* lowRow = scratch.lowest16.data() + rowStart;
+    const std::int16_t* highRow = scratch.highest16.data() + rowStart;
+    for (int x = 0; x < width; ++x) {
+      low16[x] = std::min(low16[x], lowRow[x]);
+      high16[x] = std::max(high16[x], highRow[x]);
+    }
+  }
+}
+
+void SearchWindowRowsImpl(const LidarPoints& points, int minDisparity, int rows, int margin, int y0, int y1,
+                          std::int16_t* low16, std::int16_t* high16, SearchWindows& windows) {
   const hn::ScalableTag<std::int16_t> d;
   const int N = static_cast<int>(hn::Lanes(d));
   const int width = windows.width();
   const int numDisparities = windows.numDisparities();
   for (int y = y0; y < y1; ++y) {
-    lidarSearchRowExtremes(rows, y, low16, high16, windows);
+    RowExtremesOfPointRows(points, rows, y, low16, high16, windows);
     std::int16_t* first = windows.firstRowToSet(y);
     std::int16_t* count = windows.countRowToSet(y);
     int x = 0;
@@ -85,9 +109,9 @@ namespace cpu {
 
 HWY_EXPORT(SearchWindowRowsImpl);
 
-void searchWindowRows(int minDisparity, int rows, int margin, int y0, int y1, std::int16_t* low16,
-                      std::int16_t* high16, SearchWindows& windows) {
-  HWY_DYNAMIC_DISPATCH(SearchWindowRowsImpl)(minDisparity, rows, margin, y0, y1, low16, high16, windows);
+void searchWindowRows(const LidarPoints& points, int minDisparity, int rows, int margin, int y0, int y1,
+                      std::int16_t* low16, std::int16_t* high16, SearchWindows& windows) {
+  HWY_DYNAMIC_DISPATCH(SearchWindowRowsImpl)(points, minDisparity, rows, margin, y0, y1, low16, high16, windows);
 }
 
 }  // namespace cpu
