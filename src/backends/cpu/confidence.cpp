@@ -3,6 +3,14 @@
 // bounds checks inside the image), split among the threads by fixed ranges of rows (or, for the
 // vertical LiDAR distance, of columns). Each pass reads only what the pass before it wrote
 // completely, so no output depends on which thread computed it, nor on how many there were.
+// Compiled once per Highway target and chosen at run time, as the other kernels, so that the
+// compiler vectorises these loops with the machine's widest vectors (AVX2: 32 bytes) instead of
+// the baseline's SSE2.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "backends/cpu/confidence.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -11,8 +19,10 @@
 #include "backends/cpu/parallel.hpp"
 #include "core/confidence_pixel.hpp"
 
+HWY_BEFORE_NAMESPACE();
 namespace lidar_sgm {
 namespace cpu {
+namespace HWY_NAMESPACE {
 namespace {
 
 constexpr auto kCap = static_cast<std::uint8_t>(kLidarDistanceCap);
@@ -256,7 +266,7 @@ void resizeBuffers(ConfidenceBuffers& b, int width, int height, bool texture) {
 
 }  // namespace
 
-void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance,
+void LidarDistanceImpl(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance,
                    ConfidenceBuffers& buffers, int threads) {
   const int W = support.width;
   const int H = support.height;
@@ -271,7 +281,7 @@ void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t
   });
 }
 
-void textureAndSaturation(const GrayImageView& image, ImageView<std::uint8_t> texture,
+void TextureAndSaturationImpl(const GrayImageView& image, ImageView<std::uint8_t> texture,
                           ImageView<std::uint8_t> saturated, ConfidenceBuffers& buffers, int threads) {
   const int W = texture.width;
   const int H = texture.height;
@@ -298,7 +308,7 @@ void textureAndSaturation(const GrayImageView& image, ImageView<std::uint8_t> te
   });
 }
 
-void disparityRange(ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> range,
+void DisparityRangeImpl(ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> range,
                     ConfidenceBuffers& buffers, int threads) {
   const int W = disparity.width;
   const int H = disparity.height;
@@ -320,7 +330,7 @@ void disparityRange(ImageView<const std::int16_t> disparity, ImageView<std::uint
   });
 }
 
-void combineConfidence(const ConfidenceInputs& inputs, MatchMode mode, int paths,
+void CombineConfidenceImpl(const ConfidenceInputs& inputs, MatchMode mode, int paths,
                        ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> confidence, int threads) {
   const ConfidenceModel& model = confidenceModel(mode);
   parallelRanges(disparity.height, threads, [&](int y0, int y1) {
@@ -330,7 +340,7 @@ void combineConfidence(const ConfidenceInputs& inputs, MatchMode mode, int paths
   });
 }
 
-void confidenceOfFrame(const GrayImageView& image, ImageView<const std::uint8_t> support,
+void ConfidenceOfFrameImpl(const GrayImageView& image, ImageView<const std::uint8_t> support,
                        ImageView<const std::int16_t> disparity, MatchMode mode, int paths, ConfidenceInputs& inputs,
                        ImageView<std::uint8_t> confidence, ConfidenceBuffers& buffers, int threads) {
   const int W = disparity.width;
@@ -376,5 +386,48 @@ void confidenceOfFrame(const GrayImageView& image, ImageView<const std::uint8_t>
   }
 }
 
+}  // namespace HWY_NAMESPACE
 }  // namespace cpu
 }  // namespace lidar_sgm
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lidar_sgm {
+namespace cpu {
+
+HWY_EXPORT(LidarDistanceImpl);
+HWY_EXPORT(TextureAndSaturationImpl);
+HWY_EXPORT(DisparityRangeImpl);
+HWY_EXPORT(CombineConfidenceImpl);
+HWY_EXPORT(ConfidenceOfFrameImpl);
+
+void lidarDistance(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance,
+                   ConfidenceBuffers& buffers, int threads) {
+  HWY_DYNAMIC_DISPATCH(LidarDistanceImpl)(support, distance, buffers, threads);
+}
+
+void textureAndSaturation(const GrayImageView& image, ImageView<std::uint8_t> texture,
+                          ImageView<std::uint8_t> saturated, ConfidenceBuffers& buffers, int threads) {
+  HWY_DYNAMIC_DISPATCH(TextureAndSaturationImpl)(image, texture, saturated, buffers, threads);
+}
+
+void disparityRange(ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> range,
+                    ConfidenceBuffers& buffers, int threads) {
+  HWY_DYNAMIC_DISPATCH(DisparityRangeImpl)(disparity, range, buffers, threads);
+}
+
+void combineConfidence(const ConfidenceInputs& inputs, MatchMode mode, int paths,
+                       ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> confidence, int threads) {
+  HWY_DYNAMIC_DISPATCH(CombineConfidenceImpl)(inputs, mode, paths, disparity, confidence, threads);
+}
+
+void confidenceOfFrame(const GrayImageView& image, ImageView<const std::uint8_t> support,
+                       ImageView<const std::int16_t> disparity, MatchMode mode, int paths, ConfidenceInputs& inputs,
+                       ImageView<std::uint8_t> confidence, ConfidenceBuffers& buffers, int threads) {
+  HWY_DYNAMIC_DISPATCH(ConfidenceOfFrameImpl)(image, support, disparity, mode, paths, inputs, confidence, buffers,
+                                              threads);
+}
+
+}  // namespace cpu
+}  // namespace lidar_sgm
+#endif  // HWY_ONCE
