@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <random>
 #include <ostream>
@@ -610,6 +611,41 @@ std::vector<FrameCase> frameCases() {
 
 class BackendFrames : public ::testing::TestWithParam<std::tuple<std::string, int, FrameCase>> {};
 
+Image<std::uint8_t> copyOf(ImageView<const std::uint8_t> view) {
+  Image<std::uint8_t> out(view.width, view.height);
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) out(x, y) = view(x, y);
+  }
+  return out;
+}
+
+// What cpu_ref makes of one frame case. It runs on one thread whatever Parameters::threads says,
+// so its outputs are the same for every (backend, threads) of the case: computed at the case's
+// first test and kept, instead of once per test (three thread counts, two backends).
+struct ReferenceFrame {
+  Image<std::int16_t> disparity;
+  Image<std::uint8_t> support;
+  Image<std::uint8_t> confidence;
+  ConfidenceInputs inputs;
+  MatchMode mode = MatchMode::Fused;
+};
+
+const ReferenceFrame& referenceFrame(const FrameCase& c, const Parameters& params, const GrayImageView& left,
+                                     const GrayImageView& right, const VerticalView& up, const LidarPoints* lidar) {
+  static std::map<std::string, ReferenceFrame> frames;
+  const auto found = frames.find(c.name);
+  if (found != frames.end()) return found->second;
+  auto reference = Matcher::create(Backend::CpuRef, params);
+  ReferenceFrame frame;
+  frame.disparity = Image<std::int16_t>(c.width, c.height);
+  reference->compute(left, right, up, lidar, frame.disparity.view());
+  frame.support = copyOf(reference->lidarSupport());
+  if (params.confidence) frame.confidence = copyOf(reference->confidence());
+  frame.inputs = reference->confidenceInputs();
+  frame.mode = reference->lastMode();
+  return frames.emplace(c.name, std::move(frame)).first->second;
+}
+
 TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
   const auto& [name, threads, c] = GetParam();
   if (!isAvailable(backendFromString(name))) {
@@ -647,49 +683,33 @@ TEST_P(BackendFrames, MatchesCpuRefBitForBit) {
     EXPECT_GT(narrowed, c.width * c.height / 10) << "pixels with a window narrower than the range";
   }
 
-  auto reference = Matcher::create(Backend::CpuRef, params);
+  const ReferenceFrame& reference = referenceFrame(c, params, left, right, up, lidar);
+  const Image<std::int16_t>& expected = reference.disparity;
   std::unique_ptr<Matcher> backend = Matcher::create(backendFromString(name), params);
   ASSERT_EQ(toString(backend->backend()), name);
-  Image<std::int16_t> expected(c.width, c.height), actual(c.width, c.height);
-  reference->compute(left, right, up, lidar, expected.view());
+  Image<std::int16_t> actual(c.width, c.height);
   // Twice: the second frame reuses the buffers of the first and must not depend on them.
   for (int frame = 0; frame < 2; ++frame) {
     actual.fill(123);
     backend->compute(left, right, up, lidar, actual.view());
     ASSERT_TRUE(sameImages(expected, actual)) << c.name << ", frame " << frame;
   }
-  EXPECT_EQ(backend->lastMode(), reference->lastMode());
-  Image<std::uint8_t> supportExpected(c.width, c.height), supportActual(c.width, c.height);
-  for (int y = 0; y < c.height; ++y) {
-    for (int x = 0; x < c.width; ++x) {
-      supportExpected(x, y) = reference->lidarSupport()(x, y);
-      supportActual(x, y) = backend->lidarSupport()(x, y);
-    }
-  }
-  EXPECT_TRUE(sameImages(supportExpected, supportActual)) << "lidarSupport";
+  EXPECT_EQ(backend->lastMode(), reference.mode);
+  EXPECT_TRUE(sameImages(reference.support, copyOf(backend->lidarSupport()))) << "lidarSupport";
   // The confidence (on by default) and the inputs it was computed from.
-  const auto copyOf = [](ImageView<const std::uint8_t> view) {
-    Image<std::uint8_t> out(view.width, view.height);
-    for (int y = 0; y < view.height; ++y) {
-      for (int x = 0; x < view.width; ++x) out(x, y) = view(x, y);
-    }
-    return out;
-  };
   if (params.confidence) {
     ASSERT_EQ(backend->confidence().width, c.width);
-    EXPECT_TRUE(sameImages(copyOf(reference->confidence()), copyOf(backend->confidence()))) << "confidence";
-    EXPECT_TRUE(sameImages(reference->confidenceInputs().margin, backend->confidenceInputs().margin)) << "margin";
-    EXPECT_TRUE(sameImages(reference->confidenceInputs().bestCost, backend->confidenceInputs().bestCost));
-    EXPECT_TRUE(sameImages(reference->confidenceInputs().leftRightDifference,
-                           backend->confidenceInputs().leftRightDifference))
+    EXPECT_TRUE(sameImages(reference.confidence, copyOf(backend->confidence()))) << "confidence";
+    EXPECT_TRUE(sameImages(reference.inputs.margin, backend->confidenceInputs().margin)) << "margin";
+    EXPECT_TRUE(sameImages(reference.inputs.bestCost, backend->confidenceInputs().bestCost));
+    EXPECT_TRUE(sameImages(reference.inputs.leftRightDifference, backend->confidenceInputs().leftRightDifference))
         << "leftRightDifference";
     // The core's inputs: computed by the core for the CPU backends, on the device by cuda.
-    EXPECT_TRUE(sameImages(reference->confidenceInputs().lidarDistance, backend->confidenceInputs().lidarDistance))
+    EXPECT_TRUE(sameImages(reference.inputs.lidarDistance, backend->confidenceInputs().lidarDistance))
         << "lidarDistance";
-    EXPECT_TRUE(sameImages(reference->confidenceInputs().texture, backend->confidenceInputs().texture)) << "texture";
-    EXPECT_TRUE(sameImages(reference->confidenceInputs().saturated, backend->confidenceInputs().saturated))
-        << "saturated";
-    EXPECT_TRUE(sameImages(reference->confidenceInputs().disparityRange, backend->confidenceInputs().disparityRange))
+    EXPECT_TRUE(sameImages(reference.inputs.texture, backend->confidenceInputs().texture)) << "texture";
+    EXPECT_TRUE(sameImages(reference.inputs.saturated, backend->confidenceInputs().saturated)) << "saturated";
+    EXPECT_TRUE(sameImages(reference.inputs.disparityRange, backend->confidenceInputs().disparityRange))
         << "disparityRange";
   } else {
     EXPECT_TRUE(backend->confidence().empty());

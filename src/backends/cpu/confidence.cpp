@@ -267,7 +267,7 @@ void resizeBuffers(ConfidenceBuffers& b, int width, int height, bool texture) {
 }  // namespace
 
 void LidarDistanceImpl(ImageView<const std::uint8_t> support, ImageView<std::uint8_t> distance,
-                   ConfidenceBuffers& buffers, int threads) {
+                       ConfidenceBuffers& buffers, int threads) {
   const int W = support.width;
   const int H = support.height;
   resizeKeep(buffers.vertical, static_cast<std::size_t>(W) * H);
@@ -282,7 +282,7 @@ void LidarDistanceImpl(ImageView<const std::uint8_t> support, ImageView<std::uin
 }
 
 void TextureAndSaturationImpl(const GrayImageView& image, ImageView<std::uint8_t> texture,
-                          ImageView<std::uint8_t> saturated, ConfidenceBuffers& buffers, int threads) {
+                              ImageView<std::uint8_t> saturated, ConfidenceBuffers& buffers, int threads) {
   const int W = texture.width;
   const int H = texture.height;
   if (image.empty()) {
@@ -309,7 +309,7 @@ void TextureAndSaturationImpl(const GrayImageView& image, ImageView<std::uint8_t
 }
 
 void DisparityRangeImpl(ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> range,
-                    ConfidenceBuffers& buffers, int threads) {
+                        ConfidenceBuffers& buffers, int threads) {
   const int W = disparity.width;
   const int H = disparity.height;
   resizeKeep(buffers.rowMin, static_cast<std::size_t>(W) * H);
@@ -331,7 +331,8 @@ void DisparityRangeImpl(ImageView<const std::int16_t> disparity, ImageView<std::
 }
 
 void CombineConfidenceImpl(const ConfidenceInputs& inputs, MatchMode mode, int paths,
-                       ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> confidence, int threads) {
+                           ImageView<const std::int16_t> disparity, ImageView<std::uint8_t> confidence,
+                           int threads) {
   const ConfidenceModel& model = confidenceModel(mode);
   parallelRanges(disparity.height, threads, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
@@ -341,8 +342,9 @@ void CombineConfidenceImpl(const ConfidenceInputs& inputs, MatchMode mode, int p
 }
 
 void ConfidenceOfFrameImpl(const GrayImageView& image, ImageView<const std::uint8_t> support,
-                       ImageView<const std::int16_t> disparity, MatchMode mode, int paths, ConfidenceInputs& inputs,
-                       ImageView<std::uint8_t> confidence, ConfidenceBuffers& buffers, int threads) {
+                           ImageView<const std::int16_t> disparity, MatchMode mode, int paths,
+                           ConfidenceInputs& inputs, ImageView<std::uint8_t> confidence, ConfidenceBuffers& buffers,
+                           int threads) {
   const int W = disparity.width;
   const int H = disparity.height;
   const bool texture = !image.empty();

@@ -1,5 +1,5 @@
-// LiDAR matching cost C_L (Eq. 4), fast CPU backend. Streamed: computed per pixel from the
-// few points around it instead of a second cost volume. A point's cost is below the cap only
+// LiDAR matching cost C_L (Eq. 4), fast CPU backend. Streamed: computed per row from the points
+// of its three rows instead of a second cost volume. A point's cost is below the cap only
 // within +-table.entries().size() / 16 px of its disparity (about +-2 px for sigma = 2), so
 // each point touches a handful of disparities, not all D.
 #include <algorithm>
