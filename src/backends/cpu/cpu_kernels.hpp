@@ -15,6 +15,7 @@
 
 #include "backends/common/search_windows.hpp"
 #include "backends/common/stages.hpp"
+#include "lidar_sgm/core/lidar_points.hpp"
 
 namespace lidar_sgm {
 namespace cpu {
@@ -105,6 +106,29 @@ class LidarCostRows {
   int width_ = 0;
   std::vector<std::uint8_t> rows_;
 };
+
+// The points of row y whose pixels lie in columns [x0, x1): slots [begin, end) of LidarPoints'
+// arrays, which hold a row's points side by side in pixel order. The LiDAR passes read a row's
+// run of points this way instead of visiting every pixel, most of which hold none.
+struct RowPoints {
+  const int* disparity16 = nullptr;  ///< LidarPoints::disparities16()
+  const int* pixel = nullptr;        ///< LidarPoints::pointPixels()
+  int begin = 0;
+  int end = 0;
+  int rowStart = 0;  ///< the pixel index of the row's column 0
+  int column(int slot) const { return pixel[slot] - rowStart; }
+  bool empty() const { return begin == end; }
+};
+inline RowPoints rowPoints(const LidarPoints& points, int y, int x0, int x1) {
+  RowPoints row;
+  row.disparity16 = points.disparities16().data();
+  row.pixel = points.pointPixels().data();
+  row.rowStart = y * points.width();
+  const int* starts = points.pixelStarts().data();
+  row.begin = starts[row.rowStart + x0];
+  row.end = starts[row.rowStart + x1];  // pixelStarts()[W * H] ends the last row
+  return row;
+}
 
 // search_window_rows.cpp: lidarSearchWindowRows (lidar_search_windows.hpp) for `points`, the same
 // windows bit for bit, a vector of pixels at a time.

@@ -51,17 +51,11 @@ void lidarCostRow(const LidarPoints& points, const LidarCostRows& rows, int y, i
   // the two beside it. A row's points lie side by side in pixel order (LidarPoints), so the run of
   // them is read at once, not nine cells per pixel, most of them empty. Every pixel a point reaches
   // is touched (lidarTouchedRow): the cap was set above.
-  const int* starts = points.pixelStarts().data();
-  const int* disparities = points.disparities16().data();
-  const int* pixels = points.pointPixels().data();
-  const int columnBegin = std::max(0, x0 - 1);
-  const int columnEnd = std::min(width, x1 + 1);
   for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
-    const std::size_t rowStart = static_cast<std::size_t>(ny) * width;
-    const int last = starts[rowStart + columnEnd];  // starts[W * H] ends the last row
-    for (int i = starts[rowStart + columnBegin]; i < last; ++i) {
-      const int px = pixels[i] - static_cast<int>(rowStart);
-      const int dP = disparities[i];
+    const RowPoints run = rowPoints(points, ny, std::max(0, x0 - 1), std::min(width, x1 + 1));
+    for (int i = run.begin; i < run.end; ++i) {
+      const int px = run.column(i);
+      const int dP = run.disparity16[i];
       const int q = floorDivide(dP - reach, kDisparityScale);
       const std::uint8_t* row = rows.row(dP - reach - kDisparityScale * q);
       const int first = q - minDisparity;  // the index of row[0] in a pixel's costs
@@ -84,13 +78,10 @@ void lidarTouchedRow(const LidarPoints& points, int y, std::uint8_t* touched) {
   const int width = points.width();
   std::fill(touched, touched + width, std::uint8_t{0});
   // From each row's run of points (as lidarCostRow), not from every pixel's count.
-  const int* starts = points.pixelStarts().data();
-  const int* pixels = points.pointPixels().data();
   for (int ny = std::max(0, y - 1); ny <= std::min(points.height() - 1, y + 1); ++ny) {
-    const std::size_t rowStart = static_cast<std::size_t>(ny) * width;
-    const int last = starts[rowStart + width];
-    for (int i = starts[rowStart]; i < last; ++i) {
-      const int x = pixels[i] - static_cast<int>(rowStart);
+    const RowPoints run = rowPoints(points, ny, 0, width);
+    for (int i = run.begin; i < run.end; ++i) {
+      const int x = run.column(i);
       for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) touched[nx] = 1;
     }
   }
@@ -140,19 +131,16 @@ namespace {
 void searchExtremesOfRows(const LidarPoints& points, int y0, int y1, SearchWindows& windows) {
   const int width = points.width();
   SearchWindows::Scratch& scratch = windows.scratch();
-  const int* starts = points.pixelStarts().data();
-  const int* disparities = points.disparities16().data();
-  const int* pixels = points.pointPixels().data();
   for (int y = y0; y < y1; ++y) {
     const std::size_t rowStart = static_cast<std::size_t>(y) * width;
     std::int16_t* lowest16 = scratch.lowest16.data() + rowStart;
     std::int16_t* highest16 = scratch.highest16.data() + rowStart;
     std::fill(lowest16, lowest16 + width, kSearchNoLowest);
     std::fill(highest16, highest16 + width, kSearchNoHighest);
-    const int last = starts[rowStart + width];
-    for (int i = starts[rowStart]; i < last; ++i) {
-      const int x = pixels[i] - static_cast<int>(rowStart);
-      const std::int16_t value = searchClamp16(disparities[i]);
+    const RowPoints run = rowPoints(points, y, 0, width);
+    for (int i = run.begin; i < run.end; ++i) {
+      const int x = run.column(i);
+      const std::int16_t value = searchClamp16(run.disparity16[i]);
       for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
         lowest16[nx] = std::min(lowest16[nx], value);
         highest16[nx] = std::max(highest16[nx], value);

@@ -58,12 +58,11 @@ void RowExtremesOfPointRows(const LidarPoints& points, int rows, int y, std::int
   const int width = windows.width();
   const int height = windows.height();
   const SearchWindows::Scratch& scratch = windows.scratch();
-  const int* starts = points.pixelStarts().data();
   std::fill(low16, low16 + width, kSearchNoLowest);
   std::fill(high16, high16 + width, kSearchNoHighest);
   for (int ny = std::max(0, y - rows); ny <= std::min(height - 1, y + rows); ++ny) {
+    if (rowPoints(points, ny, 0, width).empty()) continue;  // no point on row ny
     const std::size_t rowStart = static_cast<std::size_t>(ny) * width;
-    if (starts[rowStart] == starts[rowStart + width]) continue;  // no point on row ny
     const std::int16_t* lowRow = scratch.lowest16.data() + rowStart;
     const std::int16_t* highRow = scratch.highest16.data() + rowStart;
     for (int x = 0; x < width; ++x) {
