@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <optional>
+#include <type_traits>
 
 #include "backends/cpu/cpu_kernels.hpp"
 #include "backends/cpu/cpu_stages.hpp"
@@ -65,7 +66,11 @@ HWY_INLINE void SelectPixel(const std::uint16_t* HWY_RESTRICT S, int best, int x
       const int numerator = (before - after) * kDisparityScale;
       const int denominator = 2 * curvature;
       const int half = denominator / 2;
-      offset16 = numerator >= 0 ? (numerator + half) / denominator : -((-numerator + half) / denominator);
+      // One division of the magnitude and the sign put back by a select: the sign is the
+      // neighbours' order, as likely one way as the other, so a branch on it mispredicts.
+      const int magnitude = numerator >= 0 ? numerator : -numerator;
+      const int rounded = (magnitude + half) / denominator;
+      offset16 = numerator >= 0 ? rounded : -rounded;
     }
   }
   disparity16[x] = static_cast<std::int16_t>((minDisparity + best) * kDisparityScale + offset16);
@@ -102,35 +107,45 @@ void SumSelectRowT(const T* const* pathList, const std::uint8_t* stored8, const 
   if (extras != nullptr && extras->rightIndex != nullptr) {
     bids.emplace(extras->rightScratch, extras->width, D, minDisparity);
   }
-  for (int x = x0; x < x1; ++x) {
-    const int f = first == nullptr ? 0 : first[x];
-    const int n = first == nullptr ? D : windowCount[x];
-    const std::size_t atPixel = static_cast<std::size_t>(x - x0) * D + f;
-    const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1 + f;
-    std::uint16_t* S = pixelTotal ? total : total + atPixel;
-    auto minimum = hn::Set(d16, std::uint16_t{0xFFFF});
+  const auto step = hn::Set(d16, static_cast<std::uint16_t>(N));
+  const auto none = hn::Set(d16, std::uint16_t{0xFFFF});
+  // One pass over the pixel's paths: S, stored for the rules after the winner; its minimum and,
+  // per lane, the first index reaching the lane's minimum (strictly smaller replaces), so that the
+  // winner needs no second pass and no branch on where it lies; and, with the right view, the
+  // pixel's bids while S is in registers.
+  const auto sumPixel = [&](auto withBids, int x, int f, int n, std::size_t atPixel, std::size_t inSlot,
+                            std::uint16_t* S) {
+    auto minimum = none;
+    auto argument = hn::Zero(d16);
+    auto index = hn::Iota(d16, 0);
+    const std::size_t bidBase = withBids ? bids->base(x, f) : 0;
     for (int i = 0; i < n; i += N) {
       auto sum = stored8 != nullptr    ? LoadAsU16(stored8 + atPixel + i)
                  : stored16 != nullptr ? hn::LoadU(d16, stored16 + atPixel + i)
                                        : hn::Zero(d16);
       for (int k = 0; k < kCount; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
       hn::StoreU(sum, d16, S + i);
+      argument = hn::IfThenElse(hn::Lt(sum, minimum), index, argument);
       minimum = hn::Min(minimum, sum);
+      if constexpr (decltype(withBids)::value) bids->bidVector(sum, bidBase + static_cast<std::size_t>(i), index, f);
+      index = hn::Add(index, step);
     }
+    // The first d of the smallest S (ties go to the smaller d, as in cpu_ref).
     const auto target = hn::Set(d16, static_cast<std::uint16_t>(MinLaneU16(minimum)));
-    int best = 0;
-    for (int i = 0; i < n; i += N) {
-      const intptr_t lane = hn::FindFirstTrue(d16, hn::Eq(hn::LoadU(d16, S + i), target));
-      if (lane >= 0) {
-        best = i + static_cast<int>(lane);
-        break;
-      }
-    }
+    return static_cast<int>(MinLaneU16(hn::IfThenElse(hn::Eq(minimum, target), argument, none)));
+  };
+  for (int x = x0; x < x1; ++x) {
+    const int f = first == nullptr ? 0 : first[x];
+    const int n = first == nullptr ? D : windowCount[x];
+    const std::size_t atPixel = static_cast<std::size_t>(x - x0) * D + f;
+    const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1 + f;
+    std::uint16_t* S = pixelTotal ? total : total + atPixel;
+    const int best = bids ? sumPixel(std::true_type(), x, f, n, atPixel, inSlot, S)
+                          : sumPixel(std::false_type(), x, f, n, atPixel, inSlot, S);
     // On the window: index 0 is disparity index f, so the window's edges are the parabola's.
     SelectPixel(S, best, x, n, minDisparity + f, uniquenessRatio, subpixel, disparity16, bestIndex);
     if (margin) PeakRatioMarginPixel(S, n, bestIndex[x], extras->margin + x, extras->bestCost + x);
     if (bestIndex[x] >= 0) bestIndex[x] = static_cast<std::int16_t>(bestIndex[x] + f);
-    if (bids) bids->bid(S, x, n, f);
   }
   if (bids) bids->winners(extras->rightIndex);
 }

@@ -63,6 +63,25 @@ struct RightBids {
     }
   }
 
+  // Where left pixel x's bids from disparity index `first` on begin in the scratch.
+  HWY_INLINE std::size_t base(int x, int first) const {
+    return static_cast<std::size_t>(offset + width - 1 - x + minDisparity + first);
+  }
+
+  // One vector of a left pixel's bids: costs `offer` of window indices `index` (from 0 at the
+  // window's start, which is disparity index `first`), at `at` = base(x, first) + the vector's
+  // first index. The same compare-select as bid().
+  HWY_INLINE void bidVector(hwy::HWY_NAMESPACE::Vec<D16> offer, std::size_t at, hwy::HWY_NAMESPACE::Vec<D16> index,
+                            int first) {
+    namespace hn = hwy::HWY_NAMESPACE;
+    const D16 d16;
+    const auto cost = hn::LoadU(d16, bestCost + at);
+    const auto better = hn::Lt(offer, cost);  // strictly: for a right pixel the smaller d bids first and wins ties
+    hn::StoreU(hn::IfThenElse(better, offer, cost), d16, bestCost + at);
+    const auto disparity = hn::Add(index, hn::Set(d16, static_cast<std::uint16_t>(first)));
+    hn::StoreU(hn::IfThenElse(better, disparity, hn::LoadU(d16, bestIndex + at)), d16, bestIndex + at);
+  }
+
   // After every left pixel of the row has bid.
   void winners(std::int16_t* rightIndex) const {
     for (int xr = 0; xr < width; ++xr) rightIndex[xr] = static_cast<std::int16_t>(bestIndex[offset + width - 1 - xr]);
