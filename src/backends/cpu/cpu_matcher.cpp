@@ -212,9 +212,10 @@ void preparePathBuffer(Bytes& rows, std::size_t count, std::size_t rowBytes, int
 }  // namespace
 
 // The path rows of both sweeps, grown only. Only their slots' ends need the sentinel, marked once
-// per layout: a frame's stereo witness (hidden_lidar.hpp) runs on this matcher at half scale
-// before the frame itself, so the layout changes twice a frame, and filling the whole rows each
-// time (13.6 MB at KITTI size) cost more than the marks (0.2 MB).
+// per layout and set of rows: a frame's stereo witness (hidden_lidar.hpp) runs on this matcher at
+// half scale before the frame itself, so the layout changes twice a frame; each of the two keeps
+// its own set (filling the whole rows each time, 13.6 MB at KITTI size, and then marking one set's
+// ends for each layout in turn, cost more).
 void CpuMatcher::preparePathRows(const Frame& f, bool& newLayout) {
   const int W = f.plan.width;
   const int H = f.plan.height;
@@ -223,17 +224,26 @@ void CpuMatcher::preparePathRows(const Frame& f, bool& newLayout) {
   const std::size_t rowBytes = f.rowSlots * element;
   const std::size_t layout =
       (element << 40) ^ (static_cast<std::size_t>(W) << 20) ^ static_cast<std::size_t>(D);
-  newLayout = layout != pathLayout_;
-  pathLayout_ = layout;
+  // The set marked for this layout, else the one used least recently.
+  PathRows* set = pathSets_[0].layout == layout ? &pathSets_[0]
+                  : pathSets_[1].layout == layout ? &pathSets_[1]
+                  : pathSets_[0].lastUse <= pathSets_[1].lastUse ? &pathSets_[0]
+                                                                 : &pathSets_[1];
+  const bool newSetLayout = set->layout != layout;
+  set->layout = layout;
+  set->lastUse = ++frames_;
+  paths_ = set;
+  newLayout = layout != workerLayout_;  // the workers' rows (prepareWorkers)
+  workerLayout_ = layout;
   // Per chunk: each vertical path downward and upward (2 * verticalPaths rows of kChunkRows),
   // in two parities.
   const std::size_t chunkPathRows = 2 * static_cast<std::size_t>(kChunkRows) * 2 * f.verticalPaths;
   // One group of checkpoints a chunk but the last (the sweep up), or one a chunk (the bands).
   const std::size_t checkpoints = static_cast<std::size_t>((H - 1) / kChunkRows + 1) * f.verticalPaths;
   // Each path's double-buffered row, for each of two bands (sweepBands).
-  preparePathBuffer(pathRows_, 4 * 3, rowBytes, W, D, element, newLayout);
-  preparePathBuffer(chunkPaths_, chunkPathRows, rowBytes, W, D, element, newLayout);
-  preparePathBuffer(checkpoints_, checkpoints, rowBytes, W, D, element, newLayout);
+  preparePathBuffer(set->rows, 4 * 3, rowBytes, W, D, element, newSetLayout);
+  preparePathBuffer(set->chunks, chunkPathRows, rowBytes, W, D, element, newSetLayout);
+  preparePathBuffer(set->checkpoints, checkpoints, rowBytes, W, D, element, newSetLayout);
   resizeKeep(pathMins_, 4 * 3 * static_cast<std::size_t>(W));
   resizeKeep(chunkMins_, chunkPathRows * W);
   resizeKeep(checkpointMins_, checkpoints * W);

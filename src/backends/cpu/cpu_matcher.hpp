@@ -201,15 +201,24 @@ class CpuMatcher final : public MatcherBackend {
   // from costOffsets_[y * width + x] in its row.
   std::vector<std::size_t> costRowStart_;
   HugePageVector<std::uint32_t> costOffsets_;  // 4 bytes a pixel: on huge pages, as the volume
-  // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, all ones at first,
-  // which is both types' sentinel; refilled only when the layout (type, width, D) changes.
-  HugePageVector<std::uint8_t> pathRows_;  // sweep up: every path's double-buffered row (slots)
-  std::size_t pathLayout_ = 0;
+  // Path rows hold uint8 or uint16 elements (aggregation.cpp): kept as bytes, their slots' ends
+  // marked with all ones (both types' sentinel) once per layout (type, width, D). A frame's stereo
+  // witness runs on this matcher before the frame itself, so the rows of the last two layouts are
+  // kept: re-marking one set for the other layout touched every cache line of ~9 MB twice a frame.
+  struct PathRows {
+    HugePageVector<std::uint8_t> rows;         // sweep up: every path's double-buffered row (slots)
+    HugePageVector<std::uint8_t> chunks;       // sweep down: a chunk's path rows (slots), two parities
+    HugePageVector<std::uint8_t> checkpoints;  // sweep up: the upward paths at every chunk's first row
+    std::size_t layout = 0;
+    std::uint64_t lastUse = 0;
+  };
+  PathRows pathSets_[2];
+  PathRows* paths_ = &pathSets_[0];  // the frame's set (preparePathRows)
+  std::uint64_t frames_ = 0;
+  std::size_t workerLayout_ = 0;  // the layout the workers' horizontal path rows are marked for
   std::vector<std::uint16_t> pathMins_;
   static constexpr int kChunkRows = 8;
-  HugePageVector<std::uint8_t> chunkPaths_;    // sweep down: a chunk's path rows (slots), two parities
-  std::vector<std::uint16_t> chunkMins_;    // ... and their minima
-  HugePageVector<std::uint8_t> checkpoints_;   // sweep up: the upward paths at every chunk's first row
+  std::vector<std::uint16_t> chunkMins_;    // the chunk path rows' minima
   std::vector<std::uint16_t> checkpointMins_;
   std::vector<Worker> workers_;
   // Who costs each row in the bands' phase 1: the first band to claim it; kHelped once the other

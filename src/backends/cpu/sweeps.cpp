@@ -152,9 +152,9 @@ void CpuMatcher::stepRow(const Frame& f, int i, int x0, int x1, int rowSet, int 
   for (int k = 0; k < f.verticalPaths; ++k) {
     const std::size_t current = static_cast<std::size_t>((rowSet * 3 + k) * 2 + i % 2);
     const std::size_t previous = static_cast<std::size_t>((rowSet * 3 + k) * 2 + (i + 1) % 2);
-    PathT* out = as<PathT>(pathRows_, current * rowSlots);
+    PathT* out = as<PathT>(paths_->rows, current * rowSlots);
     std::uint16_t* outMin = pathMins_.data() + current * W;
-    pathRowFromPrevious(row, rowX0, i == 0 ? nullptr : as<PathT>(pathRows_, previous * rowSlots),
+    pathRowFromPrevious(row, rowX0, i == 0 ? nullptr : as<PathT>(paths_->rows, previous * rowSlots),
                         pathMins_.data() + previous * W, kVerticalDx[k], W, x0, x1, D, p.P1, p.P2, out, outMin,
                         windows);
     if (group >= 0) {
@@ -291,14 +291,14 @@ void CpuMatcher::bandSelect(const Frame& f, int band, int splitChunk, Worker& w)
 template <typename PathT>
 PathT* CpuMatcher::chunkPath(const Frame& f, int parity, int k, int r) {
   const std::size_t row = (static_cast<std::size_t>(parity) * 2 * f.verticalPaths + k) * kChunkRows + r;
-  return as<PathT>(chunkPaths_, row * f.rowSlots);
+  return as<PathT>(paths_->chunks, row * f.rowSlots);
 }
 
 // Path k's row in checkpoint group `group` (one group of verticalPaths rows a chunk) and its minima.
 template <typename PathT>
 std::pair<PathT*, std::uint16_t*> CpuMatcher::checkpointRow(const Frame& f, int group, int k) {
   const std::size_t g = static_cast<std::size_t>(group) * f.verticalPaths + k;
-  return {as<PathT>(checkpoints_, g * f.rowSlots), checkpointMins_.data() + g * f.plan.width};
+  return {as<PathT>(paths_->checkpoints, g * f.rowSlots), checkpointMins_.data() + g * f.plan.width};
 }
 
 std::uint16_t* CpuMatcher::chunkMin(const Frame& f, int parity, int k, int r) {
