@@ -113,9 +113,21 @@ void SumSelectRowT(const T* const* pathList, const std::uint8_t* stored8, const 
   // per lane, the first index reaching the lane's minimum (strictly smaller replaces), so that the
   // winner needs no second pass and no branch on where it lies; and, with the right view, the
   // pixel's bids while S is in registers.
-  const auto sumPixel = [&](auto withBids, int x, int f, int n, std::size_t atPixel, std::size_t inSlot,
-                            std::uint16_t* S) {
+  //
+  // With the margin (and at least 3 lanes), each lane's second smallest S too: the margin's S2 is
+  // the smallest S more than 1 px from the winner, and those excluded disparities d - 1, d, d + 1
+  // fall in three different lanes, so a lane whose first minimum is one of them offers its second
+  // smallest, any other lane its minimum (an equal S elsewhere in the lane is its second smallest).
+  // That spares the margin a second pass over S.
+  const bool secondInPass = margin && N >= 3;
+  struct PixelWinner {
+    int best;
+    int second;  // S2 when secondInPass
+  };
+  const auto sumPixel = [&](auto withBids, auto withSecond, int x, int f, int n, std::size_t atPixel,
+                            std::size_t inSlot, std::uint16_t* S) {
     auto minimum = none;
+    auto second = none;
     auto argument = hn::Zero(d16);
     auto index = hn::Iota(d16, 0);
     const std::size_t bidBase = withBids ? bids->base(x, f) : 0;
@@ -126,13 +138,21 @@ void SumSelectRowT(const T* const* pathList, const std::uint8_t* stored8, const 
       for (int k = 0; k < kCount; ++k) sum = hn::Add(sum, LoadAsU16(paths[k] + inSlot + i));
       hn::StoreU(sum, d16, S + i);
       argument = hn::IfThenElse(hn::Lt(sum, minimum), index, argument);
+      if constexpr (decltype(withSecond)::value) second = hn::Min(second, hn::Max(minimum, sum));
       minimum = hn::Min(minimum, sum);
       if constexpr (decltype(withBids)::value) bids->bidVector(sum, bidBase + static_cast<std::size_t>(i), index, f);
       index = hn::Add(index, step);
     }
     // The first d of the smallest S (ties go to the smaller d, as in cpu_ref).
     const auto target = hn::Set(d16, static_cast<std::uint16_t>(MinLaneU16(minimum)));
-    return static_cast<int>(MinLaneU16(hn::IfThenElse(hn::Eq(minimum, target), argument, none)));
+    PixelWinner winner{static_cast<int>(MinLaneU16(hn::IfThenElse(hn::Eq(minimum, target), argument, none))), 0};
+    if constexpr (decltype(withSecond)::value) {
+      // Lanes whose first minimum lies within 1 of the winner: d - (best - 1) < 3 as uint16.
+      const auto near = hn::Lt(hn::Sub(argument, hn::Set(d16, static_cast<std::uint16_t>(winner.best - 1))),
+                               hn::Set(d16, std::uint16_t{3}));
+      winner.second = static_cast<int>(MinLaneU16(hn::IfThenElse(near, second, minimum)));
+    }
+    return winner;
   };
   for (int x = x0; x < x1; ++x) {
     const int f = first == nullptr ? 0 : first[x];
@@ -140,11 +160,25 @@ void SumSelectRowT(const T* const* pathList, const std::uint8_t* stored8, const 
     const std::size_t atPixel = static_cast<std::size_t>(x - x0) * D + f;
     const std::size_t inSlot = static_cast<std::size_t>(x) * slot + 1 + f;
     std::uint16_t* S = pixelTotal ? total : total + atPixel;
-    const int best = bids ? sumPixel(std::true_type(), x, f, n, atPixel, inSlot, S)
-                          : sumPixel(std::false_type(), x, f, n, atPixel, inSlot, S);
+    const PixelWinner winner =
+        bids ? (secondInPass ? sumPixel(std::true_type(), std::true_type(), x, f, n, atPixel, inSlot, S)
+                             : sumPixel(std::true_type(), std::false_type(), x, f, n, atPixel, inSlot, S))
+             : (secondInPass ? sumPixel(std::false_type(), std::true_type(), x, f, n, atPixel, inSlot, S)
+                             : sumPixel(std::false_type(), std::false_type(), x, f, n, atPixel, inSlot, S));
     // On the window: index 0 is disparity index f, so the window's edges are the parabola's.
-    SelectPixel(S, best, x, n, minDisparity + f, uniquenessRatio, subpixel, disparity16, bestIndex);
-    if (margin) PeakRatioMarginPixel(S, n, bestIndex[x], extras->margin + x, extras->bestCost + x);
+    SelectPixel(S, winner.best, x, n, minDisparity + f, uniquenessRatio, subpixel, disparity16, bestIndex);
+    if (secondInPass) {
+      // A winner the uniqueness rule refused has no margin (PeakRatioMarginPixel's rule).
+      if (bestIndex[x] < 0) {
+        extras->margin[x] = 0;
+        extras->bestCost[x] = 0;
+      } else {
+        extras->bestCost[x] = S[winner.best];
+        PeakRatioMarginOfSecond(winner.second, S[winner.best], extras->margin + x);
+      }
+    } else if (margin) {
+      PeakRatioMarginPixel(S, n, bestIndex[x], extras->margin + x, extras->bestCost + x);
+    }
     if (bestIndex[x] >= 0) bestIndex[x] = static_cast<std::int16_t>(bestIndex[x] + f);
   }
   if (bids) bids->winners(extras->rightIndex);

@@ -88,6 +88,17 @@ struct RightBids {
   }
 };
 
+// The peak-ratio margin m from the pixel's second cost S2 (the smallest S more than 1 px from the
+// winner; 0xFFFF: none) and its winner's S1 (core/confidence.hpp).
+HWY_INLINE void PeakRatioMarginOfSecond(int second, int best, std::uint8_t* margin) {
+  if (second == 0xFFFF) {
+    *margin = 255;
+    return;
+  }
+  const int value = (256 * (second - best)) / std::max(second, 1);
+  *margin = static_cast<std::uint8_t>(std::min(value, 255));
+}
+
 // The peak-ratio margin m and S1 of one pixel (core/confidence.hpp) from its S and winner `best`
 // (-1: none): a vector minimum over S, the winner's +-1 lanes set to the largest value.
 HWY_INLINE void PeakRatioMarginPixel(const std::uint16_t* HWY_RESTRICT S, int D, int best, std::uint8_t* margin,
@@ -115,13 +126,7 @@ HWY_INLINE void PeakRatioMarginPixel(const std::uint16_t* HWY_RESTRICT S, int D,
     lowest = hn::Min(lowest, hn::IfThenElse(own, none, hn::LoadU(d16, S + i)));
     index = hn::Add(index, step);
   }
-  const int second = static_cast<int>(MinLaneU16(lowest));
-  if (second == 0xFFFF) {
-    *margin = 255;
-    return;
-  }
-  const int value = (256 * (second - S[best])) / std::max(second, 1);
-  *margin = static_cast<std::uint8_t>(std::min(value, 255));
+  PeakRatioMarginOfSecond(static_cast<int>(MinLaneU16(lowest)), S[best], margin);
 }
 
 }  // namespace HWY_NAMESPACE
