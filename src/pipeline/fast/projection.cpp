@@ -70,14 +70,30 @@ void project(const std::vector<Eigen::Vector3f>& pointsLidar, const geometry::St
     parallelRanges(plan.height, threads, [&](int, int y0, int y1) {
       geometry::occupiedRows(nearestView, y0, y1, ranges.occupied.data());
     });
+    // The filter on equal shares of all candidates, the point ranges' lists taken as one in range
+    // order: the camera sees a part of the scan, so the point ranges hold unequal numbers of
+    // candidates (a KITTI scan: the first range most of them). Each share's kept samples come out in
+    // the same order, so their concatenation in share order is the specification's.
     parallelRanges(pointRanges, threads, [&](int t, int, int) {
       const std::size_t i = static_cast<std::size_t>(t);
+      const std::size_t shareBegin = candidateCount * i / static_cast<std::size_t>(pointRanges);
+      const std::size_t shareEnd = candidateCount * (i + 1) / static_cast<std::size_t>(pointRanges);
       std::vector<LidarSample> samples = std::move(ranges.samples[i]);  // in locals, as above
       std::vector<std::size_t> sourceIndex = std::move(ranges.sourceIndex[i]);
       samples.clear();
       sourceIndex.clear();
-      ranges.occluded[i] = geometry::keepUnoccluded(ranges.candidates[i], 0, ranges.candidates[i].size(), nearestView,
-                                                    ranges.occupied.data(), filter, samples, sourceIndex);
+      std::size_t occluded = 0;
+      std::size_t offset = 0;  // the first candidate of range r among all
+      for (const std::vector<geometry::ProjectionCandidate>& candidates : ranges.candidates) {
+        const std::size_t begin = std::max(shareBegin, offset);
+        const std::size_t end = std::min(shareEnd, offset + candidates.size());
+        if (begin < end) {
+          occluded += geometry::keepUnoccluded(candidates, begin - offset, end - offset, nearestView,
+                                               ranges.occupied.data(), filter, samples, sourceIndex);
+        }
+        offset += candidates.size();
+      }
+      ranges.occluded[i] = occluded;
       ranges.samples[i] = std::move(samples);
       ranges.sourceIndex[i] = std::move(sourceIndex);
     });
