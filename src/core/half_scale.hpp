@@ -16,10 +16,13 @@ inline int halfSize(int full) { return (full + 1) / 2; }
 
 /// 2x2 box average, rounded half up: out(x, y) = (sum of in(2x..2x+1, 2y..2y+1) + 2) >> 2, with
 /// the border pixel repeated past an odd edge. `out` is resized to halfSize() x halfSize().
-void downscaleHalf(ImageView<const std::uint8_t> in, Image<std::uint8_t>& out);
-void downscaleHalf(ImageView<const std::uint16_t> in, Image<std::uint16_t>& out);
+/// `threads`: rows split among OpenMP threads (parallel_ranges.hpp; one without OpenMP), the same
+/// result for any count, as for the functions below.
+void downscaleHalf(ImageView<const std::uint8_t> in, Image<std::uint8_t>& out, int threads = 1);
+void downscaleHalf(ImageView<const std::uint16_t> in, Image<std::uint16_t>& out, int threads = 1);
 /// A gray image of either depth halved into the buffer of its depth; empty in, empty out.
-GrayImageView downscaleHalf(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16);
+GrayImageView downscaleHalf(const GrayImageView& in, Image<std::uint8_t>& buffer8, Image<std::uint16_t>& buffer16,
+                            int threads = 1);
 
 /// Every point moves to pixel (x/2, y/2) with its disparity halved, rounded half up (x16), so at
 /// least 1/16 px: a point stays in front of the camera.
@@ -28,8 +31,8 @@ LidarPoints halveLidarPoints(const LidarPoints& points);
 void halveLidarPoints(const LidarPoints& points, std::vector<LidarSample>& samples, LidarPoints& half);
 
 /// full(x, y) = 2 * half(x/2, y/2), kInvalidDisparity staying invalid.
-void upscaleDisparity(ImageView<const std::int16_t> half, ImageView<std::int16_t> full);
+void upscaleDisparity(ImageView<const std::int16_t> half, ImageView<std::int16_t> full, int threads = 1);
 /// full(x, y) = half(x/2, y/2).
-void upscaleMask(ImageView<const std::uint8_t> half, ImageView<std::uint8_t> full);
+void upscaleMask(ImageView<const std::uint8_t> half, ImageView<std::uint8_t> full, int threads = 1);
 
 }  // namespace lidar_sgm

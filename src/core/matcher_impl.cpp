@@ -53,9 +53,11 @@ void Matcher::Impl::runAtHalfScale(const FramePlan& plan, const GrayImageView& l
                                    const VerticalView& vertical, const LidarPoints* lidar,
                                    ImageView<std::int16_t> disparity) {
   auto start = std::chrono::steady_clock::now();
-  const GrayImageView halfLeft = downscaleHalf(left, half8[0], half16[0]);
-  const GrayImageView halfRight = downscaleHalf(right, half8[1], half16[1]);
-  const GrayImageView halfUp = downscaleHalf(vertical.up, half8[2], half16[2]);
+  // The resampling on the backend's threads (rows split; no result depends on their count).
+  const int threads = effectiveThreads(params);
+  const GrayImageView halfLeft = downscaleHalf(left, half8[0], half16[0], threads);
+  const GrayImageView halfRight = downscaleHalf(right, half8[1], half16[1], threads);
+  const GrayImageView halfUp = downscaleHalf(vertical.up, half8[2], half16[2], threads);
   const bool halfWithLidar = lidar != nullptr && !lidar->empty();
   if (halfWithLidar) halveLidarPoints(*lidar, halfSamples, halfLidar);
   halfDisparity.resize(plan.width, plan.height);
@@ -65,18 +67,18 @@ void Matcher::Impl::runAtHalfScale(const FramePlan& plan, const GrayImageView& l
              halfDisparity.view());
 
   start = std::chrono::steady_clock::now();
-  upscaleDisparity(std::as_const(halfDisparity).view(), disparity);
+  upscaleDisparity(std::as_const(halfDisparity).view(), disparity, threads);
   std::swap(halfSupport, results.support);  // the backend wrote the half-scale support
   results.support.resize(disparity.width, disparity.height);
   if (halfSupport.empty()) {
     results.support.fill(0);
   } else {
-    upscaleMask(std::as_const(halfSupport).view(), results.support.view());
+    upscaleMask(std::as_const(halfSupport).view(), results.support.view(), threads);
   }
   if (plan.confidence) {
     std::swap(halfConfidence, results.confidence);
     results.confidence.resize(disparity.width, disparity.height);
-    upscaleMask(std::as_const(halfConfidence).view(), results.confidence.view());
+    upscaleMask(std::as_const(halfConfidence).view(), results.confidence.view(), threads);
   }
   rescaleMs += msSince(start);
 }

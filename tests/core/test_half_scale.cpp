@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "common/synthetic_stereo.hpp"
 #include "core/half_scale.hpp"
@@ -52,6 +53,61 @@ TEST(HalfScale, UpscaledDisparityDoublesValuesAndKeepsInvalid) {
   EXPECT_EQ(full(2, 0), kInvalidDisparity);
   EXPECT_EQ(full(0, 2), 80);
   EXPECT_EQ(full(2, 2), -6);
+}
+
+// The resampling splits its rows among threads: the same images on any count, at odd and even
+// sizes (the last full row of an odd height is an even one, with no row below it).
+TEST(HalfScale, ResamplingIsTheSameOnAnyThreadCount) {
+  for (const auto& [width, height] : {std::pair{37, 23}, std::pair{40, 18}, std::pair{5, 1}}) {
+    Image<std::uint8_t> in8(width, height);
+    Image<std::uint16_t> in16(width, height);
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        in8(x, y) = static_cast<std::uint8_t>((x * 37 + y * 91) % 256);
+        in16(x, y) = static_cast<std::uint16_t>((x * 3001 + y * 977) % 65536);
+      }
+    }
+    Image<std::int16_t> half(halfSize(width), halfSize(height));
+    Image<std::uint8_t> halfMask(halfSize(width), halfSize(height));
+    for (int y = 0; y < half.height(); ++y) {
+      for (int x = 0; x < half.width(); ++x) {
+        half(x, y) = (x + y) % 5 == 0 ? kInvalidDisparity : static_cast<std::int16_t>(x * 7 - y * 3);
+        halfMask(x, y) = static_cast<std::uint8_t>(x * 11 + y);
+      }
+    }
+    Image<std::uint8_t> down8One, down8;
+    Image<std::uint16_t> down16One, down16;
+    Image<std::int16_t> upOne(width, height), up(width, height);
+    Image<std::uint8_t> maskOne(width, height), mask(width, height);
+    downscaleHalf(std::as_const(in8).view(), down8One, 1);
+    downscaleHalf(std::as_const(in16).view(), down16One, 1);
+    upscaleDisparity(std::as_const(half).view(), upOne.view(), 1);
+    upscaleMask(std::as_const(halfMask).view(), maskOne.view(), 1);
+    EXPECT_EQ(upOne(width - 1, height - 1), half(halfSize(width) - 1, halfSize(height) - 1) == kInvalidDisparity
+                                                ? kInvalidDisparity
+                                                : 2 * half(halfSize(width) - 1, halfSize(height) - 1));
+    for (const int threads : {2, 3, 7}) {
+      downscaleHalf(std::as_const(in8).view(), down8, threads);
+      downscaleHalf(std::as_const(in16).view(), down16, threads);
+      up.fill(0);
+      mask.fill(0);
+      upscaleDisparity(std::as_const(half).view(), up.view(), threads);
+      upscaleMask(std::as_const(halfMask).view(), mask.view(), threads);
+      const auto same = [](const auto& a, const auto& b) {
+        if (a.width() != b.width() || a.height() != b.height()) return false;
+        for (int y = 0; y < a.height(); ++y) {
+          for (int x = 0; x < a.width(); ++x) {
+            if (a(x, y) != b(x, y)) return false;
+          }
+        }
+        return true;
+      };
+      EXPECT_TRUE(same(down8One, down8)) << width << "x" << height << ", " << threads << " threads";
+      EXPECT_TRUE(same(down16One, down16)) << width << "x" << height << ", " << threads << " threads";
+      EXPECT_TRUE(same(upOne, up)) << width << "x" << height << ", " << threads << " threads";
+      EXPECT_TRUE(same(maskOne, mask)) << width << "x" << height << ", " << threads << " threads";
+    }
+  }
 }
 
 // The matcher at scale 0.5 is exactly: scale the inputs down, match with half the search range,
