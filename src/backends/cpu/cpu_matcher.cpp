@@ -231,7 +231,7 @@ void CpuMatcher::preparePathRows(const Frame& f, bool& newLayout) {
                                                                  : &pathSets_[1];
   const bool newSetLayout = set->layout != layout;
   set->layout = layout;
-  set->lastUse = ++frames_;
+  set->lastUse = ++pathSetUses_;
   paths_ = set;
   newLayout = layout != workerLayout_;  // the workers' rows (prepareWorkers)
   workerLayout_ = layout;

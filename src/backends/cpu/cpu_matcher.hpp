@@ -214,7 +214,7 @@ class CpuMatcher final : public MatcherBackend {
   };
   PathRows pathSets_[2];
   PathRows* paths_ = &pathSets_[0];  // the frame's set (preparePathRows)
-  std::uint64_t frames_ = 0;
+  std::uint64_t pathSetUses_ = 0;  // preparePathRows calls, the sets' clock for lastUse
   std::size_t workerLayout_ = 0;  // the layout the workers' horizontal path rows are marked for
   std::vector<std::uint16_t> pathMins_;
   static constexpr int kChunkRows = 8;

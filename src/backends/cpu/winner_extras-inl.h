@@ -50,27 +50,23 @@ struct RightBids {
     namespace hn = hwy::HWY_NAMESPACE;
     const D16 d16;
     const int N = static_cast<int>(hn::Lanes(d16));
-    const auto iota = hn::Iota(d16, static_cast<std::uint16_t>(first));
-    // Right pixel xr = x - minDisparity - d: slot offset + width - 1 - x + minDisparity + d.
-    const std::size_t base = static_cast<std::size_t>(offset + width - 1 - x + minDisparity + first);
+    const std::size_t at = base(x, first);
+    auto index = hn::Iota(d16, 0);
     for (int i = 0; i < D; i += N) {
-      const auto cost = hn::LoadU(d16, bestCost + base + i);
-      const auto offer = hn::LoadU(d16, S + i);
-      const auto better = hn::Lt(offer, cost);  // strictly: for a right pixel the smaller d bids first and wins ties
-      hn::StoreU(hn::IfThenElse(better, offer, cost), d16, bestCost + base + i);
-      const auto index = hn::Add(iota, hn::Set(d16, static_cast<std::uint16_t>(i)));
-      hn::StoreU(hn::IfThenElse(better, index, hn::LoadU(d16, bestIndex + base + i)), d16, bestIndex + base + i);
+      bidVector(hn::LoadU(d16, S + i), at + static_cast<std::size_t>(i), index, first);
+      index = hn::Add(index, hn::Set(d16, static_cast<std::uint16_t>(N)));
     }
   }
 
-  // Where left pixel x's bids from disparity index `first` on begin in the scratch.
+  // Where left pixel x's bids from disparity index `first` on begin in the scratch: right pixel
+  // xr = x - minDisparity - d sits at offset + width - 1 - xr.
   HWY_INLINE std::size_t base(int x, int first) const {
     return static_cast<std::size_t>(offset + width - 1 - x + minDisparity + first);
   }
 
   // One vector of a left pixel's bids: costs `offer` of window indices `index` (from 0 at the
   // window's start, which is disparity index `first`), at `at` = base(x, first) + the vector's
-  // first index. The same compare-select as bid().
+  // first index.
   HWY_INLINE void bidVector(hwy::HWY_NAMESPACE::Vec<D16> offer, std::size_t at, hwy::HWY_NAMESPACE::Vec<D16> index,
                             int first) {
     namespace hn = hwy::HWY_NAMESPACE;

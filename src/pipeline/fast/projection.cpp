@@ -83,7 +83,7 @@ void project(const std::vector<Eigen::Vector3f>& pointsLidar, const geometry::St
       samples.clear();
       sourceIndex.clear();
       std::size_t occluded = 0;
-      std::size_t offset = 0;  // the first candidate of range r among all
+      std::size_t offset = 0;  // the index among all candidates of this range's first
       for (const std::vector<geometry::ProjectionCandidate>& candidates : ranges.candidates) {
         const std::size_t begin = std::max(shareBegin, offset);
         const std::size_t end = std::min(shareEnd, offset + candidates.size());
